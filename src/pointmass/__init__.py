@@ -1,0 +1,36 @@
+"""pointmass: the cookbook's mass-aggregate physics engine (particles, force generators, hard
+constraints, an iterative contact resolver), with an OpenGL viewer in ``pointmass.render`` and
+``pointmass.app``.
+
+The core imports only numpy and numba; rendering and windows load only when asked for.
+
+    >>> import pointmass as pm
+    >>> world = pm.World(gravity=(0, -9.81, 0))
+    >>> a = world.add_particle(position=(0, 2, 0), velocity=(0, 10, 30), mass=1.0, radius=0.5)
+    >>> b = world.add_particle(position=(2, 2, 2), mass=20.0, radius=0.5)
+    >>> _ = world.add(pm.Spring(a, b, spring_constant=100.0, rest_length=2.0))
+    >>> _ = world.add(pm.Drag(k1=0.1, k2=0.1))
+    >>> _ = world.add(pm.Ground(height=0.0, restitution=0.5))
+    >>> _ = world.add(pm.SphereCollisions(restitution=0.5))
+    >>> stats = world.step(1 / 60)
+"""
+
+from .collide import Box, Ground, Plane, SphereCollisions
+from .contacts import ContactBuffer, ContactGenerator
+from .forces import Buoyancy, CustomForce, Drag, ForceGenerator, Gravity
+from .links import AnchoredCable, AnchoredRod, Cable, Rod
+from .params import choice, tweak
+from .particles import Particle, Particles
+from .scene import BoxVisual, CameraHint, PlaneVisual, Scene
+from .springs import AnchoredBungee, AnchoredSpring, Bungee, FakeSpring, Spring
+from .world import StepStats, World
+
+__version__ = "0.1.0"
+
+__all__ = [
+    "AnchoredBungee", "AnchoredCable", "AnchoredRod", "AnchoredSpring", "Box", "BoxVisual",
+    "Bungee", "Buoyancy", "Cable", "CameraHint", "ContactBuffer", "ContactGenerator",
+    "CustomForce", "Drag", "FakeSpring", "ForceGenerator", "Gravity", "Ground", "Particle",
+    "Particles", "Plane", "PlaneVisual", "Rod", "Scene", "SphereCollisions", "Spring",
+    "StepStats", "World", "choice", "tweak",
+]

@@ -1,0 +1,113 @@
+"""Contacts and the contact-generator interface.
+
+A contact says that particle ``a`` must move along ``normal`` away from ``b`` (another particle,
+or ``-1`` for scenery such as the ground): the normal points from b to a. ``penetration`` [m] is
+how far they overlap (negative: a gap, as a slack rod reports), ``restitution`` in [0, 1] how
+much closing speed comes back as separating speed.
+
+Contacts are stored as a struct of arrays (``ContactBuffer``) so the compiled resolver reads them
+directly; generators append many at once.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from . import _validate as check
+from .particles import Particles
+
+
+class ContactBuffer:
+    """A growable struct-of-arrays list of contacts, cleared at every step.
+
+    Attributes (views of the first ``count`` rows):
+        a: First particle, shape (M,), int64.
+        b: Second particle or -1 for scenery, shape (M,), int64.
+        normal: Unit normal from b to a, shape (M, 3).
+        penetration: Overlap depth [m], shape (M,).
+        restitution: Coefficient of restitution in [0, 1], shape (M,).
+    """
+
+    def __init__(self, capacity: int = 64) -> None:
+        self.count = 0
+        self._alloc(max(int(capacity), 1))
+
+    def _alloc(self, capacity: int) -> None:
+        n = self.count
+        old = getattr(self, "_a", None)
+        a = np.zeros(capacity, np.int64)
+        b = np.full(capacity, -1, np.int64)
+        normal = np.zeros((capacity, 3))
+        pen = np.zeros(capacity)
+        rest = np.zeros(capacity)
+        if old is not None:
+            a[:n], b[:n] = self._a[:n], self._b[:n]
+            normal[:n], pen[:n], rest[:n] = self._normal[:n], self._penetration[:n], \
+                self._restitution[:n]
+        self._a, self._b, self._normal = a, b, normal
+        self._penetration, self._restitution = pen, rest
+        self.capacity = capacity
+
+    def reserve(self, extra: int) -> None:
+        """Make room for ``extra`` more contacts."""
+        need = self.count + extra
+        if need > self.capacity:
+            self._alloc(max(need, 2 * self.capacity))
+
+    def clear(self) -> None:
+        self.count = 0
+
+    def __len__(self) -> int:
+        return self.count
+
+    a = property(lambda self: self._a[: self.count])
+    b = property(lambda self: self._b[: self.count])
+    normal = property(lambda self: self._normal[: self.count])
+    penetration = property(lambda self: self._penetration[: self.count])
+    restitution = property(lambda self: self._restitution[: self.count])
+
+    def add(self, a, b, normal, penetration, restitution) -> None:
+        """Append contacts; each argument is one value or an array of length K (broadcast)."""
+        a = np.atleast_1d(np.asarray(a, np.int64))
+        k = a.shape[0]
+        if k == 0:
+            return
+        self.reserve(k)
+        s = slice(self.count, self.count + k)
+        self._a[s] = a
+        self._b[s] = b
+        self._normal[s] = normal
+        self._penetration[s] = penetration
+        self._restitution[s] = restitution
+        self.count += k
+
+    def raw(self) -> tuple[np.ndarray, ...]:
+        """The full backing arrays (a, b, normal, penetration, restitution) for compiled kernels
+        that append in place; set ``count`` afterwards."""
+        return self._a, self._b, self._normal, self._penetration, self._restitution
+
+
+class ContactGenerator:
+    """Something that finds contacts (hard constraints): collisions, cables, rods.
+
+    Subclasses implement ``generate``; it appends to ``contacts`` and never resolves anything.
+    Custom generators (the blob demo's platforms) subclass this too.
+    """
+
+    #: Drawing hint for renderers: "cable", "rod" or None (not drawn as lines).
+    kind: str | None = None
+
+    def generate(self, particles: Particles, contacts: ContactBuffer) -> None:
+        raise NotImplementedError
+
+    def validate(self, particles: Particles) -> None:  # noqa: B027 - optional hook
+        """Check particle indices when added to a world (raise naming the bad parameter)."""
+
+    def segments(self, particles: Particles) -> tuple[np.ndarray, np.ndarray, np.ndarray] | None:
+        """Line segments a renderer may draw: (start (K,3), end (K,3), strain (K,)) or None."""
+        return None
+
+
+def restitution_value(value, name: str = "restitution") -> float:
+    """A coefficient of restitution, checked to lie in [0, 1]."""
+    return check.scalar(value, name, low=0.0, high=1.0)

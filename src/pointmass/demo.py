@@ -1,0 +1,194 @@
+"""The demo contract, loading demo files, and running one (shared by the viewer and the recorder).
+
+A demo is a Python file in ``demos/`` (import-safe: no side effects at import) with:
+
+- ``TITLE``: a short title (required);
+- ``build(params) -> Scene`` (required);
+- ``Params``: a dataclass of ``tweak``/``choice`` fields (optional);
+- ``apply(scene, params)``: push live parameter changes into the running scene (optional);
+- ``on_step(scene, dt)``: called before every physics step (optional). It runs per *step*, not per
+  drawn frame, so a demo behaves the same in a window, a recording and a test;
+- ``check(scene)``: an oracle the tests run after a few simulated seconds (optional);
+- ``KEYS``: ``{"1": ("Pistol", fn(scene, params)), ...}`` key bindings (optional). Key names
+  are pyglet-style symbol names ("1", "W", "SPACE", "ENTER") or "CLICK" for a click in the scene.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import importlib.util
+import math
+import re
+import sys
+from collections.abc import Callable
+from dataclasses import dataclass
+from pathlib import Path
+from types import ModuleType
+from typing import Any
+
+from . import params as params_mod
+from .scene import Scene
+from .world import StepStats
+
+_ORDER_PREFIX = re.compile(r"^\d+_")
+
+
+def demo_dir() -> Path:
+    """The demos folder: the checkout's ``demos/`` or the copy packaged in the wheel."""
+    here = Path(__file__).resolve()
+    candidates = [here.parents[2] / "demos", here.parent / "demos"]
+    for path in candidates:
+        if path.is_dir():
+            return path
+    tried = ", ".join(str(p) for p in candidates)
+    raise FileNotFoundError(f"pointmass demos folder not found; looked in {tried}")
+
+
+def demo_name(path: Path) -> str:
+    """``demos/03_terminal_velocity.py`` -> ``terminal_velocity``."""
+    return _ORDER_PREFIX.sub("", path.stem)
+
+
+def demo_paths() -> list[Path]:
+    """Every demo file, in gallery order (their numeric prefixes)."""
+    return sorted(p for p in demo_dir().glob("*.py") if not p.name.startswith("_"))
+
+
+@dataclass
+class Demo:
+    """A loaded demo file."""
+
+    name: str
+    path: Path
+    module: ModuleType
+
+    @property
+    def title(self) -> str:
+        return self.module.TITLE
+
+    @property
+    def description(self) -> str:
+        """The first line of the demo's docstring."""
+        doc = (self.module.__doc__ or "").strip()
+        return doc.splitlines()[0] if doc else self.title
+
+    @property
+    def params_class(self) -> type | None:
+        return getattr(self.module, "Params", None)
+
+    def default_params(self) -> Any:
+        cls = self.params_class
+        return cls() if cls is not None else None
+
+    def build(self, params: Any) -> Scene:
+        scene = self.module.build(params) if self.params_class else self.module.build(None)
+        if not isinstance(scene, Scene):
+            raise TypeError(f"demo {self.name!r}: build() must return a Scene, got {scene!r}")
+        return scene
+
+    @property
+    def keys(self) -> dict[str, tuple[str, Callable]]:
+        return dict(getattr(self.module, "KEYS", {}))
+
+    def hook(self, name: str) -> Callable | None:
+        return getattr(self.module, name, None)
+
+
+def load_demo(name_or_path: str | Path) -> Demo:
+    """Load a demo by name (``bridge``, ``09_bridge``) or by the path of any ``.py`` file."""
+    path = Path(name_or_path)
+    if path.suffix != ".py" or not path.is_file():
+        wanted = str(name_or_path)
+        matches = [p for p in demo_paths() if p.stem == wanted or demo_name(p) == wanted]
+        if not matches:
+            known = ", ".join(demo_name(p) for p in demo_paths())
+            raise ValueError(f"unknown demo {wanted!r}; known demos: {known}")
+        path = matches[0]
+    module_name = f"pointmass_demo_{demo_name(path)}"
+    spec = importlib.util.spec_from_file_location(module_name, path)
+    module = importlib.util.module_from_spec(spec)
+    sys.modules[module_name] = module  # dataclasses look their module up while being built
+    spec.loader.exec_module(module)
+    for required in ("TITLE", "build"):
+        if not hasattr(module, required):
+            raise TypeError(f"demo file {path} has no {required}")
+    return Demo(demo_name(path), path, module)
+
+
+def list_demos() -> list[Demo]:
+    return [load_demo(p) for p in demo_paths()]
+
+
+class Simulation:
+    """One running demo: its parameters, its scene, and how time moves it forward.
+
+    The viewer, the recorder and the tests all drive demos through this class, so a demo does
+    the same thing everywhere: ``on_step`` before each fixed step, trails after each frame.
+    """
+
+    def __init__(self, demo: Demo, params: Any = None, overrides: list[str] | None = None):
+        self.demo = demo
+        self.params = params if params is not None else demo.default_params()
+        if self.params is not None:
+            params_mod.validate(self.params)
+            params_mod.apply_overrides(self.params, overrides or [])
+        elif overrides:
+            raise ValueError(f"demo {demo.name!r} has no parameters to --set")
+        self.scene = demo.build(self.params)
+        self.last_stats: StepStats | None = None
+
+    @property
+    def world(self):
+        return self.scene.world
+
+    def rebuild(self) -> None:
+        """Build the scene again from the current parameters (reset)."""
+        self.scene = self.demo.build(self.params)
+        self.last_stats = None
+
+    def set_param(self, name: str, value: Any) -> None:
+        """Change one parameter: live ones go through the demo's ``apply``, others rebuild."""
+        spec = params_mod.set_param(self.params, name, value)
+        apply = self.demo.hook("apply")
+        if spec.rebuild or apply is None:
+            self.rebuild()
+        else:
+            apply(self.scene, self.params)
+
+    def press(self, key: str) -> bool:
+        """Run the demo's binding for ``key``; False when the demo binds nothing to it."""
+        binding = self.demo.keys.get(key)
+        if binding is None:
+            return False
+        binding[1](self.scene, self.params)
+        return True
+
+    def step(self, dt: float | None = None) -> StepStats:
+        """One fixed physics step of ``dt`` (default: the scene's)."""
+        dt = self.scene.dt if dt is None else dt
+        on_step = self.demo.hook("on_step")
+        if on_step is not None:
+            on_step(self.scene, dt)
+        self.last_stats = self.scene.world.step(dt)
+        self.scene.time += dt
+        return self.last_stats
+
+    def advance(self, seconds: float) -> int:
+        """Advance simulated time by exactly ``seconds`` in equal steps no longer than the scene's
+        dt (a video frame at any fps); records trails once at the end. Returns the step count."""
+        if not seconds > 0:
+            raise ValueError(f"seconds must be > 0, got {seconds}")
+        steps = max(1, math.ceil(seconds / self.scene.dt - 1e-9))
+        for _ in range(steps):
+            self.step(seconds / steps)
+        self.scene.record_trails()
+        return steps
+
+    def check(self) -> None:
+        """Run the demo's oracle, if it has one."""
+        check = self.demo.hook("check")
+        if check is not None:
+            check(self.scene)
+
+    def param_values(self) -> dict[str, Any]:
+        return dataclasses.asdict(self.params) if self.params is not None else {}

@@ -1,0 +1,283 @@
+"""Particles stored as a struct of arrays: one row per particle, one array per quantity.
+
+A particle is an index into these arrays. ``Particle`` gives the cookbook's object-style access
+(``p.position``, ``p.velocity``, ``p.mass``) on top of them, for users coming from its ``Particle``.
+
+The arrays grow as particles are added (capacity doubles), so a property such as ``position``
+returns a view of the first ``count`` rows: read it again after adding particles.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from . import _validate as check
+
+_FIELDS_3 = ("position", "velocity", "force", "acceleration")
+_FIELDS_1 = ("inv_mass", "radius", "damping")
+
+
+class Particles:
+    """All particles of a world, struct-of-arrays.
+
+    Attributes (views of the first ``count`` rows):
+        position: Positions [m], shape (N, 3), float64.
+        velocity: Velocities [m/s], shape (N, 3).
+        force: Force accumulator [N], shape (N, 3); cleared at the start of every step.
+        acceleration: Acceleration used by the last integration [m/s²], shape (N, 3); the
+            resolver's resting-contact test reads it.
+        inv_mass: Inverse mass [1/kg], shape (N,); 0 means infinite mass (immovable).
+        radius: Collision radius [m], shape (N,); 0 means a point that never collides as a sphere.
+        damping: Fraction of velocity kept per second, in [0, 1], shape (N,); 1 means none.
+    """
+
+    def __init__(self, capacity: int = 16) -> None:
+        self._count = 0
+        self._alloc(max(int(capacity), 1))
+
+    # -- storage -------------------------------------------------------------------------------
+    def _alloc(self, capacity: int) -> None:
+        old = {name: getattr(self, "_" + name, None) for name in _FIELDS_3 + _FIELDS_1}
+        n = self._count
+        for name in _FIELDS_3:
+            arr = np.zeros((capacity, 3))
+            if old[name] is not None:
+                arr[:n] = old[name][:n]
+            setattr(self, "_" + name, arr)
+        for name in _FIELDS_1:
+            arr = np.ones(capacity) if name == "damping" else np.zeros(capacity)
+            if old[name] is not None:
+                arr[:n] = old[name][:n]
+            setattr(self, "_" + name, arr)
+        self._capacity = capacity
+
+    def _reserve(self, extra: int) -> None:
+        need = self._count + extra
+        if need > self._capacity:
+            self._alloc(max(need, 2 * self._capacity))
+
+    @property
+    def count(self) -> int:
+        """Number of particles."""
+        return self._count
+
+    def __len__(self) -> int:
+        return self._count
+
+    position = property(lambda self: self._position[: self._count], doc="Positions [m], (N, 3).")
+    velocity = property(lambda self: self._velocity[: self._count], doc="Velocities [m/s], (N, 3).")
+    force = property(lambda self: self._force[: self._count], doc="Force accumulator [N], (N, 3).")
+    acceleration = property(lambda self: self._acceleration[: self._count],
+                            doc="Acceleration of the last integration [m/s²], (N, 3).")
+    inv_mass = property(lambda self: self._inv_mass[: self._count], doc="Inverse mass [1/kg], (N,).")
+    radius = property(lambda self: self._radius[: self._count], doc="Radius [m], (N,).")
+    damping = property(lambda self: self._damping[: self._count],
+                       doc="Fraction of velocity kept per second, (N,).")
+
+    @property
+    def mass(self) -> np.ndarray:
+        """Masses [kg], shape (N,); ``inf`` for immovable particles. A copy."""
+        with np.errstate(divide="ignore"):
+            return np.where(self.inv_mass > 0, 1.0 / np.where(self.inv_mass > 0, self.inv_mass, 1),
+                            np.inf)
+
+    # -- adding --------------------------------------------------------------------------------
+    def add(self, position=(0.0, 0.0, 0.0), velocity=(0.0, 0.0, 0.0), *, mass: float = 1.0,
+            radius: float = 0.0, damping: float = 1.0) -> int:
+        """Add one particle and return its index.
+
+        Args:
+            position: Initial position [m].
+            velocity: Initial velocity [m/s].
+            mass: Mass [kg], in (0, inf]; ``math.inf`` makes it immovable.
+            radius: Collision radius [m], ≥ 0.
+            damping: Fraction of velocity kept per second, in [0, 1].
+        """
+        return int(self.add_many([position], [velocity], masses=mass, radii=radius,
+                                 damping=damping)[0])
+
+    def add_many(self, positions, velocities=None, *, masses=1.0, radii=0.0,
+                 damping=1.0) -> np.ndarray:
+        """Add many particles at once; returns their indices, shape (K,), int64.
+
+        ``positions`` has shape (K, 3); ``velocities`` (K, 3) or ``None`` for rest; ``masses``,
+        ``radii`` and ``damping`` are numbers or arrays of shape (K,), with the ranges of ``add``.
+        """
+        pos = check.vec3_array(positions, "position")
+        k = pos.shape[0]
+        vel = np.zeros((k, 3)) if velocities is None else check.vec3_array(velocities, "velocity", k)
+        inv = inverse_masses(masses, k)
+        rad = check.scalar_array(radii, "radius", k, low=0.0)
+        damp = check.scalar_array(damping, "damping", k, low=0.0, high=1.0)
+        self._reserve(k)
+        s = slice(self._count, self._count + k)
+        self._position[s] = pos
+        self._velocity[s] = vel
+        self._force[s] = 0.0
+        self._acceleration[s] = 0.0
+        self._inv_mass[s] = inv
+        self._radius[s] = rad
+        self._damping[s] = damp
+        self._count += k
+        return np.arange(s.start, s.stop, dtype=np.int64)
+
+    # -- single-particle access ----------------------------------------------------------------
+    def __getitem__(self, index: int) -> Particle:
+        return Particle(self, self.check_index(index))
+
+    def check_index(self, index, name: str = "particle") -> int:
+        """``index`` as an int if it names a particle, else an IndexError naming ``name``."""
+        if isinstance(index, Particle):
+            index = index.index
+        if isinstance(index, bool) or not isinstance(index, (int, np.integer)):
+            raise TypeError(f"{name} must be a particle index (int), got {index!r}")
+        if not 0 <= index < self._count:
+            raise IndexError(f"{name}: {index} is not a particle; indices must be in "
+                             f"[0, {self._count - 1}]" if self._count else
+                             f"{name}: {index} is not a particle; there are none yet")
+        return int(index)
+
+    def check_indices(self, indices, name: str = "particles") -> np.ndarray:
+        """Indices as an int64 array, each naming a particle, else an error naming ``name``."""
+        if isinstance(indices, Particle):
+            indices = indices.index
+        return check.indices(indices, name, self._count)
+
+    def set_mass(self, index: int, mass: float) -> None:
+        """Set one particle's mass [kg], in (0, inf]."""
+        self._inv_mass[self.check_index(index)] = inverse_masses(mass, 1)[0]
+
+    def pin(self, index: int) -> None:
+        """Make a particle immovable (infinite mass) and stop it."""
+        i = self.check_index(index)
+        self._inv_mass[i] = 0.0
+        self._velocity[i] = 0.0
+
+    def kinetic_energy(self) -> float:
+        """Total kinetic energy ½·m·|v|² of the movable particles [J]."""
+        inv = self.inv_mass
+        moving = inv > 0
+        v2 = np.einsum("ij,ij->i", self.velocity[moving], self.velocity[moving])
+        return float(0.5 * np.sum(v2 / inv[moving]))
+
+    def momentum(self) -> np.ndarray:
+        """Total linear momentum Σ m·v of the movable particles [kg·m/s], shape (3,)."""
+        inv = self.inv_mass
+        moving = inv > 0
+        return (self.velocity[moving] / inv[moving, None]).sum(axis=0)
+
+    def snapshot(self) -> dict[str, np.ndarray]:
+        """Copies of every array, to restore with ``restore`` (a reset, a determinism check)."""
+        return {name: getattr(self, name).copy() for name in _FIELDS_3 + _FIELDS_1}
+
+    def restore(self, snap: dict[str, np.ndarray]) -> None:
+        """Return to a ``snapshot`` (particles added since are dropped)."""
+        n = len(snap["inv_mass"])
+        self._count = 0
+        self._reserve(n)
+        self._count = n
+        for name, arr in snap.items():
+            getattr(self, "_" + name)[:n] = arr
+
+
+def inverse_masses(masses, count: int) -> np.ndarray:
+    """Inverse masses from masses in (0, inf] (``inf`` gives 0, immovable)."""
+    try:
+        m = np.asarray(masses, dtype=np.float64)
+    except (TypeError, ValueError):
+        raise ValueError(f"mass must be a number in (0, inf], got {masses!r}") from None
+    if m.ndim == 0:
+        m = np.full(count, float(m))
+    if m.shape != (count,):
+        raise ValueError(f"mass must be a number or have shape ({count},), got {m.shape}")
+    bad = ~(m > 0)  # catches NaN too
+    if bad.any():
+        raise ValueError(f"mass must be in (0, inf] kg (inf = immovable), got {m[bad][0]}")
+    with np.errstate(divide="ignore"):
+        return np.where(np.isinf(m), 0.0, 1.0 / m)
+
+
+class Particle:
+    """Object-style handle on one particle: reads and writes go straight to the arrays."""
+
+    __slots__ = ("index", "particles")
+
+    def __init__(self, particles: Particles, index: int) -> None:
+        self.particles = particles
+        self.index = index
+
+    def __index__(self) -> int:
+        return self.index
+
+    def __repr__(self) -> str:
+        p = self.particles
+        i = self.index
+        return (f"Particle({i}, position={tuple(p.position[i].round(6).tolist())}, "
+                f"velocity={tuple(p.velocity[i].round(6).tolist())}, mass={self.mass:g})")
+
+    @property
+    def position(self) -> np.ndarray:
+        """Position [m], a writable view of shape (3,)."""
+        return self.particles.position[self.index]
+
+    @position.setter
+    def position(self, value) -> None:
+        self.particles.position[self.index] = check.vec3(value, "position")
+
+    @property
+    def velocity(self) -> np.ndarray:
+        """Velocity [m/s], a writable view of shape (3,)."""
+        return self.particles.velocity[self.index]
+
+    @velocity.setter
+    def velocity(self, value) -> None:
+        self.particles.velocity[self.index] = check.vec3(value, "velocity")
+
+    @property
+    def force(self) -> np.ndarray:
+        """This step's accumulated force [N], shape (3,)."""
+        return self.particles.force[self.index]
+
+    def add_force(self, force) -> None:
+        """Add a force [N] to the accumulator (from a force generator or a per-frame hook)."""
+        self.particles.force[self.index] += check.vec3(force, "force")
+
+    @property
+    def inverse_mass(self) -> float:
+        """Inverse mass [1/kg]; 0 means immovable."""
+        return float(self.particles.inv_mass[self.index])
+
+    @property
+    def mass(self) -> float:
+        """Mass [kg]; ``inf`` when immovable."""
+        inv = self.inverse_mass
+        return 1.0 / inv if inv > 0 else math.inf
+
+    @mass.setter
+    def mass(self, value: float) -> None:
+        self.particles.set_mass(self.index, value)
+
+    @property
+    def radius(self) -> float:
+        """Collision radius [m]."""
+        return float(self.particles.radius[self.index])
+
+    @radius.setter
+    def radius(self, value: float) -> None:
+        self.particles.radius[self.index] = check.scalar(value, "radius", low=0.0)
+
+    @property
+    def damping(self) -> float:
+        """Fraction of velocity kept per second."""
+        return float(self.particles.damping[self.index])
+
+    @damping.setter
+    def damping(self, value: float) -> None:
+        self.particles.damping[self.index] = check.scalar(value, "damping", low=0.0, high=1.0)
+
+    @property
+    def has_finite_mass(self) -> bool:
+        """True unless immovable (Cyclone's version is always true)."""
+        return self.inverse_mass > 0

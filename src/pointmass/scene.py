@@ -1,0 +1,132 @@
+"""What a demo builds: the world plus what to draw and how to look at it (no GL here).
+
+The renderer *pulls* from a Scene: particle arrays from ``scene.world.particles``, line segments
+from every force or contact generator that has a ``segments`` method, planes and boxes from the
+lists below. The physics never calls the renderer.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from dataclasses import dataclass, field
+from typing import Any
+
+import numpy as np
+
+from .world import World
+
+
+@dataclass
+class CameraHint:
+    """Where an orbit camera starts: it looks at ``target`` from ``distance`` away.
+
+    ``yaw`` turns around the vertical axis and ``pitch`` lifts the eye above the horizon
+    (both in degrees); ``fov`` is the vertical field of view in degrees.
+    """
+
+    target: tuple[float, float, float] = (0.0, 1.0, 0.0)
+    distance: float = 10.0
+    yaw: float = 30.0
+    pitch: float = 20.0
+    fov: float = 45.0
+
+
+@dataclass
+class BoxVisual:
+    """A box to draw (walls, a platform, the cookbook's cube): centre [m], half extents [m],
+    rotation as a 3×3 matrix (columns are the box's axes in world space), RGB color in [0, 1]."""
+
+    center: tuple[float, float, float] = (0.0, 0.0, 0.0)
+    half_size: tuple[float, float, float] = (0.5, 0.5, 0.5)
+    rotation: np.ndarray = field(default_factory=lambda: np.eye(3))
+    color: tuple[float, float, float] = (0.8, 0.5, 0.2)
+    wireframe: bool = False
+
+
+@dataclass
+class PlaneVisual:
+    """A flat rectangle to draw (water surface, a tilted platform): centre, unit normal, half
+    extents along its two in-plane axes [m], RGBA color (alpha < 1 blends)."""
+
+    center: tuple[float, float, float] = (0.0, 0.0, 0.0)
+    normal: tuple[float, float, float] = (0.0, 1.0, 0.0)
+    half_size: tuple[float, float] = (5.0, 5.0)
+    color: tuple[float, float, float, float] = (0.2, 0.4, 0.8, 0.5)
+
+
+@dataclass
+class Scene:
+    """A world and how to show it.
+
+    Attributes:
+        world: The physics world.
+        camera: Where the camera starts.
+        colors: Per-particle RGB in [0, 1], shape (N, 3), or None for the default palette. May be
+            reassigned (or grown) as particles are added.
+        hidden: Optional boolean mask (N,) of particles not to draw (dead fireworks, rounds).
+        show_links: Draw springs, bungees, cables and rods as lines.
+        show_ground: Draw a ground grid at ``ground_height``.
+        ground_height: Height of the ground grid [m].
+        point_radius: Drawn radius [m] of particles whose collision radius is 0.
+        trails: Particle indices whose recent path is drawn.
+        trail_length: How many past positions a trail keeps.
+        boxes, planes: Extra geometry.
+        plots: Named quantities for the viewer's live plot: name -> fn(scene) -> float.
+        handles: Anything the demo wants to find again in ``apply``/``on_frame``/``check``.
+        keys_down: Keys held right now (names like "W", "A"), kept up to date by the viewer.
+        time: Simulated time [s] since the scene was built (advanced by ``advance``).
+    """
+
+    world: World
+    camera: CameraHint = field(default_factory=CameraHint)
+    colors: np.ndarray | None = None
+    hidden: np.ndarray | None = None
+    show_links: bool = True
+    show_ground: bool = True
+    ground_height: float = 0.0
+    point_radius: float = 0.1
+    trails: list[int] = field(default_factory=list)
+    trail_length: int = 240
+    boxes: list[BoxVisual] = field(default_factory=list)
+    planes: list[PlaneVisual] = field(default_factory=list)
+    plots: dict[str, Callable[[Scene], float]] = field(default_factory=dict)
+    handles: dict[str, Any] = field(default_factory=dict)
+    keys_down: set[str] = field(default_factory=set)
+    time: float = 0.0
+    dt: float = 1.0 / 120.0
+    """Physics time step [s] the viewer and the recorder use for this scene."""
+    _trail_buffer: dict[int, list] = field(default_factory=dict, repr=False)
+
+    def record_trails(self) -> None:
+        """Append the current positions of the trailed particles (called once per frame)."""
+        pos = self.world.particles.position
+        for i in self.trails:
+            buf = self._trail_buffer.setdefault(i, [])
+            buf.append(pos[i].copy())
+            if len(buf) > self.trail_length:
+                del buf[: len(buf) - self.trail_length]
+
+    def trail_points(self, index: int) -> np.ndarray:
+        """The recorded path of one trailed particle, shape (T, 3)."""
+        buf = self._trail_buffer.get(index, [])
+        return np.array(buf) if buf else np.zeros((0, 3))
+
+    def particle_colors(self) -> np.ndarray:
+        """Colors for every particle, shape (N, 3): ``colors`` padded with the default palette."""
+        n = self.world.particles.count
+        out = default_colors(n)
+        if self.colors is not None:
+            c = np.asarray(self.colors, dtype=np.float64).reshape(-1, 3)[:n]
+            out[: len(c)] = c
+        return out
+
+
+_PALETTE = np.array([
+    (0.90, 0.30, 0.25), (0.25, 0.55, 0.90), (0.95, 0.75, 0.20), (0.35, 0.75, 0.40),
+    (0.70, 0.40, 0.85), (0.95, 0.55, 0.20), (0.30, 0.80, 0.80), (0.85, 0.85, 0.85),
+])
+
+
+def default_colors(count: int) -> np.ndarray:
+    """A repeating palette, shape (count, 3)."""
+    return _PALETTE[np.arange(count) % len(_PALETTE)].copy()

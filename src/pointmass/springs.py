@@ -1,0 +1,291 @@
+"""Springs: Hooke's law between particles, or between a particle and a fixed anchor.
+
+One generator object holds many springs (index arrays ``a``, ``b``), as a cloth needs. The force
+is *signed*: a stretched spring pulls its ends together and a compressed one pushes them apart.
+(The cookbook and Cyclone use abs(extension), so their compressed springs pull too.) Bungees pull
+only when stretched. An optional damping term resists the ends' relative speed along the spring.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from numba import njit
+
+from . import _validate as check
+from .forces import ForceGenerator, _Selection
+from .particles import Particles
+
+
+@njit(cache=True)
+def _spring_kernel(pos, vel, force, a, b, k, rest, damping, pull_only):
+    for s in range(a.shape[0]):
+        i = a[s]
+        j = b[s]
+        dx = pos[i, 0] - pos[j, 0]
+        dy = pos[i, 1] - pos[j, 1]
+        dz = pos[i, 2] - pos[j, 2]
+        length = math.sqrt(dx * dx + dy * dy + dz * dz)
+        if length == 0.0:
+            continue  # coincident ends: no direction to push along
+        extension = length - rest[s]
+        if pull_only and extension <= 0.0:
+            continue
+        f = -k[s] * extension
+        if damping[s] != 0.0:
+            closing = ((vel[i, 0] - vel[j, 0]) * dx + (vel[i, 1] - vel[j, 1]) * dy
+                       + (vel[i, 2] - vel[j, 2]) * dz) / length
+            f -= damping[s] * closing
+        f /= length
+        force[i, 0] += f * dx
+        force[i, 1] += f * dy
+        force[i, 2] += f * dz
+        force[j, 0] -= f * dx
+        force[j, 1] -= f * dy
+        force[j, 2] -= f * dz
+
+
+@njit(cache=True)
+def _anchored_kernel(pos, vel, force, idx, anchor, k, rest, damping, pull_only):
+    for s in range(idx.shape[0]):
+        i = idx[s]
+        dx = pos[i, 0] - anchor[s, 0]
+        dy = pos[i, 1] - anchor[s, 1]
+        dz = pos[i, 2] - anchor[s, 2]
+        length = math.sqrt(dx * dx + dy * dy + dz * dz)
+        if length == 0.0:
+            continue
+        extension = length - rest[s]
+        if pull_only and extension <= 0.0:
+            continue
+        f = -k[s] * extension
+        if damping[s] != 0.0:
+            f -= damping[s] * (vel[i, 0] * dx + vel[i, 1] * dy + vel[i, 2] * dz) / length
+        f /= length
+        force[i, 0] += f * dx
+        force[i, 1] += f * dy
+        force[i, 2] += f * dz
+
+
+class _SpringSet(ForceGenerator):
+    """Shared storage of spring constants, rest lengths and damping, one per spring."""
+
+    _pull_only = False
+
+    def _init_params(self, count: int, spring_constant, rest_length, damping) -> None:
+        self._count = count
+        self.spring_constant = spring_constant
+        self.rest_length = rest_length
+        self.damping = damping
+
+    def __len__(self) -> int:
+        return self._count
+
+    @property
+    def spring_constant(self) -> np.ndarray:
+        """Spring constants k [N/m], shape (K,); assign a number or an array."""
+        return self._k
+
+    @spring_constant.setter
+    def spring_constant(self, value) -> None:
+        self._k = check.scalar_array(value, "spring_constant", self._count, low=0.0)
+
+    @property
+    def rest_length(self) -> np.ndarray:
+        """Rest lengths [m], shape (K,)."""
+        return self._rest
+
+    @rest_length.setter
+    def rest_length(self, value) -> None:
+        self._rest = check.scalar_array(value, "rest_length", self._count, low=0.0)
+
+    @property
+    def damping(self) -> np.ndarray:
+        """Damping along the spring [N·s/m], shape (K,)."""
+        return self._damping
+
+    @damping.setter
+    def damping(self, value) -> None:
+        self._damping = check.scalar_array(value, "damping", self._count, low=0.0)
+
+    def _energy(self, lengths: np.ndarray) -> float:
+        ext = lengths - self._rest
+        if self._pull_only:
+            ext = np.maximum(ext, 0.0)
+        return float(0.5 * np.sum(self._k * ext * ext))
+
+    def _strain(self, lengths: np.ndarray) -> np.ndarray:
+        return (lengths - self._rest) / np.maximum(self._rest, 1e-9)
+
+
+class Spring(_SpringSet):
+    """Springs between particle pairs ``a[s]``–``b[s]``.
+
+    Args:
+        a, b: Particle indices (ints or arrays of equal length K).
+        spring_constant: k [N/m], ≥ 0 (one number or K).
+        rest_length: l0 [m], ≥ 0.
+        damping: Damping along the spring [N·s/m], ≥ 0 (default 0, as in the cookbook).
+    """
+
+    kind = "spring"
+
+    def __init__(self, a, b, spring_constant: float = 10.0, rest_length: float = 1.0, *,
+                 damping: float = 0.0) -> None:
+        self._a_given = np.atleast_1d(np.asarray(a))
+        self._b_given = np.atleast_1d(np.asarray(b))
+        if self._a_given.shape != self._b_given.shape:
+            raise ValueError(f"a and b must have the same length, got {self._a_given.shape[0]} "
+                             f"and {self._b_given.shape[0]}")
+        self.a = self._a_given.astype(np.int64)
+        self.b = self._b_given.astype(np.int64)
+        self._init_params(self.a.shape[0], spring_constant, rest_length, damping)
+
+    def validate(self, particles: Particles) -> None:
+        self.a = particles.check_indices(self._a_given, "a")
+        self.b = particles.check_indices(self._b_given, "b")
+        same = self.a == self.b
+        if same.any():
+            raise ValueError(f"a spring joins particle {int(self.a[same][0])} to itself")
+
+    def apply(self, particles: Particles, dt: float) -> None:
+        _spring_kernel(particles.position, particles.velocity, particles.force, self.a, self.b,
+                       self._k, self._rest, self._damping, self._pull_only)
+
+    def lengths(self, particles: Particles) -> np.ndarray:
+        """Current lengths [m], shape (K,)."""
+        p = particles.position
+        return np.linalg.norm(p[self.a] - p[self.b], axis=1)
+
+    def potential_energy(self, particles: Particles) -> float:
+        return self._energy(self.lengths(particles))
+
+    def segments(self, particles: Particles):
+        p = particles.position
+        return p[self.a], p[self.b], self._strain(self.lengths(particles))
+
+
+class Bungee(Spring):
+    """Elastic cords between particle pairs: like ``Spring`` but pull only when stretched.
+
+    (Cyclone's ParticleBungee flips the sign and pushes stretched ends apart.)
+    """
+
+    kind = "bungee"
+    _pull_only = True
+
+
+class AnchoredSpring(_SpringSet):
+    """Springs from particles to fixed points (the cookbook's AnchoredSpringGenerator).
+
+    Args:
+        particles: Particle indices (an int or an array of K).
+        anchor: Anchor positions [m], a 3-vector or shape (K, 3); the ``anchor`` attribute may be
+            moved while the world runs.
+        spring_constant, rest_length, damping: As for ``Spring``.
+    """
+
+    kind = "spring"
+
+    def __init__(self, particles, anchor, spring_constant: float = 10.0,
+                 rest_length: float = 1.0, *, damping: float = 0.0) -> None:
+        self._sel = _Selection(np.atleast_1d(np.asarray(particles)))
+        count = self._sel._given.shape[0]
+        self.anchor = check.vec3_array(anchor, "anchor", count).copy()
+        self._init_params(count, spring_constant, rest_length, damping)
+
+    @property
+    def particles(self) -> np.ndarray:
+        return self._sel._checked if self._sel._checked is not None else self._sel._given
+
+    def validate(self, particles: Particles) -> None:
+        self._sel.validate(particles)
+
+    def apply(self, particles: Particles, dt: float) -> None:
+        _anchored_kernel(particles.position, particles.velocity, particles.force,
+                         self._sel.indices(particles), self.anchor, self._k, self._rest,
+                         self._damping, self._pull_only)
+
+    def lengths(self, particles: Particles) -> np.ndarray:
+        return np.linalg.norm(particles.position[self._sel.indices(particles)] - self.anchor,
+                              axis=1)
+
+    def potential_energy(self, particles: Particles) -> float:
+        return self._energy(self.lengths(particles))
+
+    def segments(self, particles: Particles):
+        return (particles.position[self._sel.indices(particles)], self.anchor.copy(),
+                self._strain(self.lengths(particles)))
+
+
+class AnchoredBungee(AnchoredSpring):
+    """Anchored elastic cords: pull toward the anchor only when stretched."""
+
+    kind = "bungee"
+    _pull_only = True
+
+
+@njit(cache=True)
+def _fake_spring_kernel(pos, vel, force, inv_mass, idx, anchor, k, d, dt):
+    for s in range(idx.shape[0]):
+        i = idx[s]
+        w = inv_mass[i]
+        if w <= 0.0:
+            continue
+        # Solve x'' = -k·x - d·x' exactly over dt for x = p - anchor (k, d per unit mass),
+        # then apply the constant acceleration that lands the particle on that solution.
+        disc = 4.0 * k - d * d
+        decay = math.exp(-0.5 * d * dt)
+        for c in range(3):
+            x0 = pos[i, c] - anchor[s, c]
+            v0 = vel[i, c]
+            if disc > 0.0:  # under-damped: Millington's formula
+                gamma = 0.5 * math.sqrt(disc)
+                coef = (0.5 * d * x0 + v0) / gamma
+                x1 = decay * (x0 * math.cos(gamma * dt) + coef * math.sin(gamma * dt))
+            elif disc < 0.0:  # over-damped: hyperbolic, where Cyclone takes sqrt(<0) = NaN
+                gamma = 0.5 * math.sqrt(-disc)
+                coef = (0.5 * d * x0 + v0) / gamma
+                x1 = decay * (x0 * math.cosh(gamma * dt) + coef * math.sinh(gamma * dt))
+            else:  # critically damped
+                x1 = decay * (x0 + (v0 + 0.5 * d * x0) * dt)
+            accel = (x1 - x0) / (dt * dt) - v0 / dt
+            force[i, c] += accel / w
+
+
+class FakeSpring(ForceGenerator):
+    """Millington's fake stiff spring: a damped spring to an anchor, integrated analytically so
+    very stiff values stay stable at large time steps.
+
+    ``spring_constant`` and ``damping`` are per unit mass (as in the book): the particle follows
+    x'' = -k·x - d·x' relative to the anchor. Under-, critically and over-damped springs are all
+    handled (Cyclone produces NaN when d² > 4k).
+
+    Args:
+        particles: Particle indices (an int or an array of K).
+        anchor: Anchor positions [m], a 3-vector or shape (K, 3).
+        spring_constant: k [1/s²], ≥ 0.
+        damping: d [1/s], ≥ 0.
+    """
+
+    kind = "spring"
+
+    def __init__(self, particles, anchor, spring_constant: float, damping: float = 0.0) -> None:
+        self._sel = _Selection(np.atleast_1d(np.asarray(particles)))
+        count = self._sel._given.shape[0]
+        self.anchor = check.vec3_array(anchor, "anchor", count).copy()
+        self.spring_constant = check.scalar(spring_constant, "spring_constant", low=0.0)
+        self.damping = check.scalar(damping, "damping", low=0.0)
+
+    def validate(self, particles: Particles) -> None:
+        self._sel.validate(particles)
+
+    def apply(self, particles: Particles, dt: float) -> None:
+        _fake_spring_kernel(particles.position, particles.velocity, particles.force,
+                            particles.inv_mass, self._sel.indices(particles), self.anchor,
+                            self.spring_constant, self.damping, dt)
+
+    def segments(self, particles: Particles):
+        p = particles.position[self._sel.indices(particles)]
+        return p, self.anchor.copy(), np.linalg.norm(p - self.anchor, axis=1)
