@@ -27,10 +27,22 @@ from .world import StepStats, World
 
 __version__ = "0.1.0"
 
+
+def show(scene, **options):
+    """Open a window on ``scene`` (a Scene or a demo Simulation): see ``pointmass.app.show``.
+
+    Imports the viewer (pyglet, imgui-bundle) only when called, so ``import pointmass`` stays
+    light and works with no display.
+    """
+    from .app import show as _show
+
+    return _show(scene, **options)
+
+
 __all__ = [
     "AnchoredBungee", "AnchoredCable", "AnchoredRod", "AnchoredSpring", "Box", "BoxVisual",
     "Bungee", "Buoyancy", "Cable", "CameraHint", "ContactBuffer", "ContactGenerator",
     "CustomForce", "Drag", "FakeSpring", "ForceGenerator", "Gravity", "Ground", "Particle",
     "Particles", "Plane", "PlaneVisual", "Rod", "Scene", "SphereCollisions", "Spring",
-    "StepStats", "World", "choice", "tweak",
+    "StepStats", "World", "choice", "show", "tweak",
 ]

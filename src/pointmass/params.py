@@ -52,11 +52,11 @@ class ParamSpec:
                     return True
                 if low in ("0", "false", "no", "off"):
                     return False
-                raise ValueError(f"parameter {self.name!r} must be {self.range_text}, got {value!r}")
+                raise self._refuse(value)
             return bool(value)
         if self.kind is str:
             if value not in self.choices:
-                raise ValueError(f"parameter {self.name!r} must be {self.range_text}, got {value!r}")
+                raise self._refuse(value)
             return value
         try:
             number = float(value)
@@ -71,6 +71,9 @@ class ParamSpec:
         if not (math.isfinite(number) and self.low <= number <= self.high):
             raise ValueError(f"parameter {self.name!r} must be in {self.range_text}, got {value!r}")
         return number
+
+    def _refuse(self, value: Any) -> ValueError:
+        return ValueError(f"parameter {self.name!r} must be {self.range_text}, got {value!r}")
 
 
 def tweak(default: Any, low: float | None = None, high: float | None = None,
