@@ -1,0 +1,76 @@
+#version 330 core
+// Spheres as instanced impostors: one camera-facing quad per sphere, ray-cast per pixel, with
+// the exact depth written so spheres intersect each other and the scene correctly.
+
+#if defined VERTEX_SHADER
+
+in vec2 in_corner;        // quad corner in [-1, 1]^2
+in vec4 in_sphere;        // xyz centre [m], w radius [m] (0 hides it)
+in vec4 in_color;         // rgb in [0, 1], a unused
+
+uniform mat4 u_view;
+uniform mat4 u_proj;
+
+out vec3 v_center;        // sphere centre, eye space
+out vec3 v_point;         // this corner, eye space
+out vec3 v_color;
+flat out float v_radius;
+
+void main() {
+    vec3 c = (u_view * vec4(in_sphere.xyz, 1.0)).xyz;
+    float r = in_sphere.w;
+    float d = length(c);
+    v_center = c;
+    v_radius = r;
+    v_color = in_color.rgb;
+    if (r <= 0.0 || d <= r * 1.001) {          // hidden, or the eye is inside it
+        gl_Position = vec4(2.0, 2.0, 2.0, 1.0);
+        v_point = c;
+        return;
+    }
+    // The quad faces the eye through the centre and is just wide enough to cover the sphere's
+    // silhouette cone (half-width r·d/sqrt(d²-r²)), so perspective never clips the disc.
+    vec3 dir = c / d;
+    vec3 side = normalize(cross(dir, abs(dir.y) < 0.99 ? vec3(0.0, 1.0, 0.0) : vec3(1.0, 0.0, 0.0)));
+    vec3 up = cross(side, dir);
+    float half_width = r * d / sqrt(d * d - r * r);
+    vec3 p = c + half_width * (in_corner.x * side + in_corner.y * up);
+    v_point = p;
+    gl_Position = u_proj * vec4(p, 1.0);
+}
+
+#elif defined FRAGMENT_SHADER
+
+in vec3 v_center;
+in vec3 v_point;
+in vec3 v_color;
+flat in float v_radius;
+
+uniform mat4 u_proj;
+uniform vec3 u_light;      // unit vector toward the light, eye space
+uniform vec3 u_sky;        // unit world-up, eye space
+
+out vec4 f_color;
+
+void main() {
+    // Ray from the eye (origin of eye space) through this pixel against the sphere.
+    vec3 ray = normalize(v_point);
+    float b = dot(ray, v_center);
+    float disc = b * b - dot(v_center, v_center) + v_radius * v_radius;
+    if (disc < 0.0) discard;
+    vec3 hit = ray * (b - sqrt(disc));
+    vec3 n = (hit - v_center) / v_radius;
+
+    vec4 clip = u_proj * vec4(hit, 1.0);
+    gl_FragDepth = 0.5 * clip.z / clip.w + 0.5;
+
+    // Blinn-Phong with a hemispherical ambient term (sky above, ground bounce below).
+    float diffuse = max(dot(n, u_light), 0.0);
+    float spec = pow(max(dot(n, normalize(u_light - ray)), 0.0), 40.0);
+    float hemi = 0.5 + 0.5 * dot(n, u_sky);
+    vec3 ambient = v_color * mix(0.18, 0.42, hemi);
+    vec3 rgb = ambient + v_color * 0.75 * diffuse + vec3(0.28) * spec;
+    f_color = vec4(rgb, 1.0);
+}
+
+#endif

@@ -1,0 +1,217 @@
+"""The ``pointmass`` command: list, run, render and record demos.
+
+Every subcommand imports what it needs when it runs, so ``pointmass list`` never loads GL and
+``pointmass render`` never loads pyglet. Bad input (an unknown demo, a bad ``--set``, a bad
+``--size``, a parameter out of range) prints one line on stderr and exits with status 2.
+"""
+
+from __future__ import annotations
+
+import argparse
+import os
+import re
+import sys
+from pathlib import Path
+
+EXIT_USAGE = 2
+EXIT_FAILURE = 1
+
+
+class UsageError(Exception):
+    """Bad command-line input: reported in one line, exit status 2."""
+
+
+class _Parser(argparse.ArgumentParser):
+    """argparse that reports errors in one line (no usage dump) with status 2."""
+
+    def error(self, message: str):
+        self.exit(EXIT_USAGE, f"{self.prog}: error: {message} (see {self.prog} --help)\n")
+
+
+def parse_size(text: str) -> tuple[int, int]:
+    """``"1280x720"`` → (1280, 720); each side in [16, 8192] pixels."""
+    m = re.fullmatch(r"\s*(\d+)\s*[xX×]\s*(\d+)\s*", text)
+    if not m:
+        raise UsageError(f"--size expects WIDTHxHEIGHT such as 1280x720, got {text!r}")
+    w, h = int(m[1]), int(m[2])
+    if not (16 <= w <= 8192 and 16 <= h <= 8192):
+        raise UsageError(f"--size sides must be in [16, 8192] pixels, got {w}x{h}")
+    return w, h
+
+
+def _positive(kind: type, name: str, *, allow_zero: bool = False):
+    def convert(text: str):
+        try:
+            value = kind(text)
+        except ValueError:
+            raise argparse.ArgumentTypeError(f"{name} expects a number, got {text!r}") from None
+        if not (value >= 0 if allow_zero else value > 0) or value != value:
+            bound = ">= 0" if allow_zero else "> 0"
+            raise argparse.ArgumentTypeError(f"{name} must be {bound}, got {text!r}")
+        return value
+    return convert
+
+
+def build_parser() -> argparse.ArgumentParser:
+    parser = _Parser(prog="pointmass", description="Mass-aggregate physics demos: list, run "
+                     "in a window, render a picture or record a video.")
+    sub = parser.add_subparsers(dest="command", required=True, parser_class=_Parser)
+
+    p = sub.add_parser("list", help="list the demos")
+    p.set_defaults(func=cmd_list)
+
+    def demo_args(p: argparse.ArgumentParser) -> None:
+        p.add_argument("demo", help="demo name (see `pointmass list`) or path to a demo file")
+        p.add_argument("--set", dest="overrides", action="append", default=[],
+                       metavar="NAME=VALUE", help="set a demo parameter (repeatable)")
+
+    p = sub.add_parser("run", help="open a window on a demo")
+    demo_args(p)
+    p.add_argument("--paused", action="store_true", help="start paused")
+    p.set_defaults(func=cmd_run)
+
+    p = sub.add_parser("render", help="render one picture of a demo offscreen")
+    demo_args(p)
+    p.add_argument("-o", "--output", required=True, help="image file (.png, .jpg)")
+    p.add_argument("--time", type=_positive(float, "--time", allow_zero=True), default=0.0,
+                   help="simulated seconds before the picture (default 0)")
+    p.add_argument("--size", default="1280x720", help="WIDTHxHEIGHT pixels (default 1280x720)")
+    p.add_argument("--contacts", action="store_true", help="draw contacts")
+    p.set_defaults(func=cmd_render)
+
+    p = sub.add_parser("record", help="record a video of a demo offscreen")
+    demo_args(p)
+    p.add_argument("-o", "--output", required=True,
+                   help="video file (.mp4, .gif) or a folder for PNG frames")
+    p.add_argument("--seconds", type=_positive(float, "--seconds"), default=5.0,
+                   help="simulated seconds to record (default 5)")
+    p.add_argument("--fps", type=_positive(int, "--fps"), default=30,
+                   help="frames per simulated second (default 30)")
+    p.add_argument("--size", default="1280x720", help="WIDTHxHEIGHT pixels (default 1280x720)")
+    p.add_argument("--quiet", action="store_true", help="no progress bar")
+    p.set_defaults(func=cmd_record)
+    return parser
+
+
+def _simulation(args):
+    """Load the demo and apply ``--set``; bad names and values become UsageError."""
+    from .demo import Simulation, load_demo
+
+    try:
+        demo = load_demo(args.demo)
+        return Simulation(demo, overrides=args.overrides)
+    except ValueError as exc:
+        raise UsageError(str(exc)) from None
+
+
+def cmd_list(args) -> int:
+    from .demo import list_demos
+
+    demos = list_demos()
+    if not demos:
+        print("no demos found")
+        return 0
+    width = max(len(d.name) for d in demos)
+    title_width = max(len(d.title) for d in demos)
+    for d in demos:
+        desc = d.description if d.description != d.title else ""
+        print(f"{d.name:<{width}}  {d.title:<{title_width}}  {desc}".rstrip())
+    return 0
+
+
+def has_display() -> bool:
+    """False on Linux without DISPLAY or WAYLAND_DISPLAY (other systems: assume one)."""
+    if not sys.platform.startswith("linux"):
+        return True
+    return bool(os.environ.get("DISPLAY") or os.environ.get("WAYLAND_DISPLAY"))
+
+
+def cmd_run(args) -> int:
+    from . import params as params_mod
+    from .demo import load_demo
+
+    try:
+        demo = load_demo(args.demo)
+        p = demo.default_params()
+        if p is not None:
+            params_mod.apply_overrides(p, args.overrides)
+        elif args.overrides:
+            raise ValueError(f"demo {demo.name!r} has no parameters to --set")
+    except ValueError as exc:
+        raise UsageError(str(exc)) from None
+    if not has_display():
+        # Checked before pyglet is imported: importing it with no display raises.
+        raise UsageError(
+            "no display (neither DISPLAY nor WAYLAND_DISPLAY is set): record a video "
+            f"instead with `pointmass record {args.demo} -o clip.mp4`, or run under a virtual "
+            f"display: `xvfb-run -a pointmass run {args.demo}`")
+    from .app import run_demo
+
+    run_demo(args.demo, overrides=list(args.overrides), paused=args.paused)
+    return 0
+
+
+def cmd_render(args) -> int:
+    from .render.snapshot import check_writable
+
+    size = parse_size(args.size)
+    out = _checked_output(args.output, check_writable)
+    if out.suffix.lower() not in (".png", ".jpg", ".jpeg", ".bmp", ".tif", ".tiff", ".webp"):
+        raise UsageError(f"-o must name an image file (.png, .jpg), got {args.output!r}")
+    sim = _simulation(args)
+
+    from .render.snapshot import render_frame, save_image
+
+    rgb = render_frame(sim, size, time=args.time, show_contacts=args.contacts)
+    save_image(rgb, out)
+    print(f"wrote {out} ({size[0]}x{size[1]}, t = {sim.scene.time:.3f} s)")
+    return 0
+
+
+def cmd_record(args) -> int:
+    from .render import recording
+
+    size = parse_size(args.size)
+    try:
+        target = recording.open_target(args.output, size, args.fps)
+    except (PermissionError, FileNotFoundError, ValueError) as exc:
+        raise UsageError(str(exc)) from None
+    try:
+        sim = _simulation(args)
+    except BaseException:
+        target.abort()
+        raise
+    result = recording.record(sim, target, seconds=args.seconds, fps=args.fps, size=size,
+                              progress=not args.quiet)
+    print(result.summary())
+    return 0 if result.complete else EXIT_FAILURE
+
+
+def _checked_output(path: str, check) -> Path:
+    try:
+        return check(path)
+    except (PermissionError, FileNotFoundError) as exc:
+        raise UsageError(str(exc)) from None
+
+
+def main(argv: list[str] | None = None) -> int:
+    """Run the command line; returns the exit status."""
+    args = build_parser().parse_args(argv)
+    try:
+        return args.func(args)
+    except UsageError as exc:
+        print(f"pointmass: error: {exc}", file=sys.stderr)
+        return EXIT_USAGE
+    except KeyboardInterrupt:
+        print("pointmass: interrupted", file=sys.stderr)
+        return 130
+    except Exception as exc:
+        # Matched by name so this module never imports the renderer (and moderngl) itself.
+        if any(c.__name__ == "RenderUnavailable" for c in type(exc).__mro__):
+            print(f"pointmass: error: {exc}", file=sys.stderr)
+            return EXIT_FAILURE
+        raise
+
+
+if __name__ == "__main__":
+    sys.exit(main())

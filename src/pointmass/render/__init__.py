@@ -1,0 +1,20 @@
+"""Rendering (moderngl + pyrr; never pyglet): the renderer, the orbit camera, picking,
+an offscreen EGL context and video recording.
+
+    >>> from pointmass.render import create_headless_context, Renderer, OrbitCamera
+    >>> ctx = create_headless_context()                       # doctest: +SKIP
+    >>> r = Renderer(ctx, (640, 360))                         # doctest: +SKIP
+    >>> r.render(scene, OrbitCamera.from_hint(scene.camera))  # doctest: +SKIP
+    >>> rgb = r.read_rgb()                                    # (360, 640, 3) uint8
+
+``record`` lives in ``pointmass.render.recording`` and ``VideoWriter`` in
+``pointmass.render.video`` (they import PyAV / Pillow only when used).
+"""
+
+from .camera import OrbitCamera
+from .context import RenderUnavailable, create_headless_context
+from .picking import pick_particle
+from .renderer import Renderer
+
+__all__ = ["OrbitCamera", "RenderUnavailable", "Renderer", "create_headless_context",
+           "pick_particle"]

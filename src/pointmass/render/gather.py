@@ -1,0 +1,127 @@
+"""Pulling what to draw out of a Scene into flat float32 arrays (no GL, no Python loop over
+particles: only over generators, trails and boxes)."""
+
+from __future__ import annotations
+
+import numpy as np
+
+from ..scene import Scene
+from . import style
+
+#: Floats per line instance: start (3), end (3), rgba (4), width [px], dash period [m].
+LINE_FLOATS = 12
+#: Floats per sphere instance: centre (3), radius, rgb, spare.
+SPHERE_FLOATS = 8
+
+LINK_KINDS = ("spring", "bungee", "cable", "rod")
+
+
+def generators(scene: Scene):
+    """Every force and contact generator of the scene's world."""
+    return [*scene.world.forces, *scene.world.contact_generators]
+
+
+def anchor_points(scene: Scene) -> np.ndarray:
+    """Distinct anchor points of anchored generators [m], shape (A, 3)."""
+    found = []
+    for gen in generators(scene):
+        anchor = getattr(gen, "anchor", None)
+        if anchor is not None and getattr(gen, "kind", None) in LINK_KINDS:
+            found.append(np.asarray(anchor, dtype=np.float64).reshape(-1, 3))
+    if not found:
+        return np.zeros((0, 3))
+    return np.unique(np.concatenate(found), axis=0)
+
+
+def fill_spheres(scene: Scene, out: np.ndarray, anchors: np.ndarray) -> int:
+    """Write particles then anchor markers into ``out`` (rows of SPHERE_FLOATS); returns the
+    row count. ``out`` must have room for N + A rows."""
+    p = scene.world.particles
+    n = p.count
+    r = p.radius
+    out[:n, 0:3] = p.position
+    out[:n, 3] = np.where(r > 0, r, scene.point_radius)
+    if scene.hidden is not None:
+        hidden = np.asarray(scene.hidden, bool)[:n]
+        out[: len(hidden), 3][hidden] = 0.0   # radius 0: the vertex shader drops the quad
+    out[:n, 4:7] = scene.particle_colors()
+    a = len(anchors)
+    if a:
+        out[n:n + a, 0:3] = anchors
+        out[n:n + a, 3] = scene.point_radius * style.ANCHOR_SCALE
+        out[n:n + a, 4:7] = style.ANCHOR_COLOR
+    return n + a
+
+
+def _rows(start, end, rgb, alpha, width, dash) -> np.ndarray:
+    k = len(start)
+    rows = np.empty((k, LINE_FLOATS), np.float32)
+    rows[:, 0:3] = start
+    rows[:, 3:6] = end
+    rows[:, 6:9] = rgb
+    rows[:, 9] = alpha
+    rows[:, 10] = width
+    rows[:, 11] = dash
+    return rows
+
+
+def link_lines(scene: Scene, width_scale: float) -> list[np.ndarray]:
+    """Line rows for every spring, bungee, cable and rod, each kind with its own look."""
+    out = []
+    particles = scene.world.particles
+    for gen in generators(scene):
+        kind = getattr(gen, "kind", None)
+        seg = getattr(gen, "segments", None)
+        if kind not in LINK_KINDS or seg is None:
+            continue
+        got = seg(particles)
+        if got is None:
+            continue
+        start, end, strain = got
+        start = np.asarray(start, np.float64).reshape(-1, 3)
+        if len(start) == 0:
+            continue
+        end = np.broadcast_to(np.asarray(end, np.float64).reshape(-1, 3), start.shape)
+        strain = np.broadcast_to(np.asarray(strain, np.float64).reshape(-1), (len(start),))
+        dash_period = style.LINK_SLACK_DASH[kind]
+        dash = np.where(strain < -1e-3, dash_period, 0.0) if dash_period else 0.0
+        out.append(_rows(start, end, style.link_colors(kind, strain), 1.0,
+                         style.LINK_WIDTH[kind] * width_scale, dash))
+    return out
+
+
+def trail_lines(scene: Scene, colors: np.ndarray, width_scale: float) -> list[np.ndarray]:
+    """Line rows for each trailed particle's recent path, fading toward its oldest point."""
+    out = []
+    for i in scene.trails:
+        pts = scene.trail_points(i)
+        if len(pts) < 2:
+            continue
+        alpha = np.linspace(0.05, 0.9, len(pts) - 1)
+        rgb = colors[i] if i < len(colors) else (1.0, 1.0, 1.0)
+        out.append(_rows(pts[:-1], pts[1:], rgb, alpha, style.TRAIL_WIDTH * width_scale, 0.0))
+    return out
+
+
+def contact_lines(scene: Scene, radii: np.ndarray, width_scale: float) -> list[np.ndarray]:
+    """A short line along each contact normal, from the contact point on particle ``a``."""
+    c = scene.world.contacts
+    if c.count == 0:
+        return []
+    pos = scene.world.particles.position
+    a = c.a
+    r = radii[a]
+    start = pos[a] - c.normal * r[:, None]
+    length = np.maximum(1.5 * r, 0.15)
+    end = start + c.normal * length[:, None]
+    return [_rows(start, end, style.CONTACT_COLOR, 1.0, 2.0 * width_scale, 0.0)]
+
+
+def extra_line_rows(extra_lines, width_scale: float) -> list[np.ndarray]:
+    """Line rows for caller-supplied (start, end, rgb) triples (the viewer's drag spring)."""
+    if not extra_lines:
+        return []
+    start = np.array([s for s, _, _ in extra_lines], np.float64).reshape(-1, 3)
+    end = np.array([e for _, e, _ in extra_lines], np.float64).reshape(-1, 3)
+    rgb = np.array([c for _, _, c in extra_lines], np.float64).reshape(-1, 3)
+    return [_rows(start, end, rgb, 1.0, style.EXTRA_WIDTH * width_scale, 0.0)]

@@ -1,0 +1,40 @@
+"""A one-line progress bar on stderr: frames done, frames per second, time left."""
+
+from __future__ import annotations
+
+import sys
+import time
+
+
+class ProgressBar:
+    """Redraws at most ``rate`` times per second; ``close()`` ends the line."""
+
+    def __init__(self, total: int, *, label: str = "recording", stream=None,
+                 rate: float = 8.0, width: int = 28) -> None:
+        self.total, self.label, self.width = max(total, 1), label, width
+        self.stream = stream if stream is not None else sys.stderr
+        self.interval = 1.0 / rate
+        self.start = time.perf_counter()
+        self._last = -1e9
+        self.done = 0
+
+    def update(self, done: int, *, force: bool = False) -> None:
+        self.done = done
+        now = time.perf_counter()
+        if not force and now - self._last < self.interval:
+            return
+        self._last = now
+        elapsed = max(now - self.start, 1e-9)
+        fps = done / elapsed
+        left = (self.total - done) / fps if fps > 0 else float("nan")
+        filled = int(self.width * done / self.total)
+        bar = "#" * filled + "." * (self.width - filled)
+        eta = f"{int(left // 60)}:{int(left % 60):02d}" if left == left else "?:??"
+        self.stream.write(f"\r{self.label} [{bar}] {done}/{self.total} frames "
+                          f"{fps:5.1f} fps, {eta} left ")
+        self.stream.flush()
+
+    def close(self) -> None:
+        self.update(self.done, force=True)
+        self.stream.write("\n")
+        self.stream.flush()

@@ -1,0 +1,302 @@
+"""The renderer: draws a Scene into one offscreen framebuffer.
+
+A window blits ``renderer.fbo`` to its screen; screenshots, videos and notebook clips read it with
+``read_rgb``. Nothing here reads the default framebuffer (Mesa leaves GL errors when one does).
+
+Per frame: one upload of every sphere (centre, radius, color) into one float32 buffer, one of
+every line; then background, ground grid, boxes and opaque planes, blob shadows (the sphere
+buffer again, as flat discs), sphere impostors, lines, and translucent planes last.
+"""
+
+from __future__ import annotations
+
+import math
+from pathlib import Path
+
+import moderngl
+import numpy as np
+
+from ..scene import Scene
+from . import gather, geometry, style
+from .camera import OrbitCamera
+from .picking import drawn_radii
+from .shaders import load_program
+
+_QUAD = np.array([-1, -1, 1, -1, -1, 1, 1, 1], np.float32)       # triangle strip, [-1, 1]^2
+_LINE_QUAD = np.array([0, -1, 1, -1, 0, 1, 1, 1], np.float32)    # along x, across y
+
+
+class _Instances:
+    """A growable GL buffer of float32 instance rows and the vertex arrays that read it."""
+
+    def __init__(self, ctx: moderngl.Context, floats: int, make_vaos) -> None:
+        self.ctx, self.floats, self.make_vaos = ctx, floats, make_vaos
+        self.capacity = 0
+        self.buffer = None
+        self.vaos: dict = {}
+        self.host = np.zeros((0, floats), np.float32)
+        self.reserve(1024)
+
+    def reserve(self, rows: int) -> None:
+        if rows <= self.capacity:
+            return
+        self.capacity = max(rows, 2 * self.capacity)
+        self.host = np.zeros((self.capacity, self.floats), np.float32)
+        for vao in self.vaos.values():
+            vao.release()
+        if self.buffer is not None:
+            self.buffer.release()
+        self.buffer = self.ctx.buffer(reserve=self.capacity * self.floats * 4, dynamic=True)
+        self.vaos = self.make_vaos(self.buffer)
+
+    def upload(self, rows: int) -> None:
+        if rows:
+            self.buffer.write(memoryview(self.host[:rows]))
+
+    def release(self) -> None:
+        for vao in self.vaos.values():
+            vao.release()
+        if self.buffer is not None:
+            self.buffer.release()
+
+
+class Renderer:
+    """Draws scenes into ``fbo`` (an RGBA8 color texture plus depth) of ``size`` pixels.
+
+    Args:
+        ctx: A moderngl context (``create_headless_context()`` or a window's).
+        size: Framebuffer (width, height) [px].
+        samples: MSAA samples (0: none; llvmpipe renders fastest at 0). With samples > 0 the
+            scene is drawn multisampled and resolved into ``fbo``.
+        shader_dir: Where the ``.glsl`` files are (default: found automatically).
+    """
+
+    def __init__(self, ctx: moderngl.Context, size: tuple[int, int] = (1280, 720), *,
+                 samples: int = 0, shader_dir: str | Path | None = None) -> None:
+        self.ctx = ctx
+        self.samples = int(samples)
+        prog = {name: load_program(ctx, name, shader_dir)
+                for name in ("background", "ground", "spheres", "shadows", "lines", "mesh")}
+        self.programs = prog
+        self._quad = ctx.buffer(_QUAD.tobytes())
+        self._line_quad = ctx.buffer(_LINE_QUAD.tobytes())
+        self._cube = ctx.buffer(geometry.cube_mesh().tobytes())
+        self._plane = ctx.buffer(geometry.quad_mesh().tobytes())
+        self._vaos = {
+            "background": ctx.vertex_array(prog["background"], []),
+            "ground": ctx.vertex_array(prog["ground"], [(self._quad, "2f", "in_corner")]),
+            "cube": ctx.vertex_array(prog["mesh"], [(self._cube, "3f 3f", "in_position",
+                                                      "in_normal")]),
+            "plane": ctx.vertex_array(prog["mesh"], [(self._plane, "3f 3f", "in_position",
+                                                       "in_normal")]),
+        }
+        self._spheres = _Instances(ctx, gather.SPHERE_FLOATS, lambda buf: {
+            "spheres": ctx.vertex_array(prog["spheres"], [
+                (self._quad, "2f", "in_corner"),
+                (buf, "4f 4f/i", "in_sphere", "in_color")]),
+            "shadows": ctx.vertex_array(prog["shadows"], [
+                (self._quad, "2f", "in_corner"),
+                (buf, "4f 16x/i", "in_sphere")]),
+        })
+        self._lines = _Instances(ctx, gather.LINE_FLOATS, lambda buf: {
+            "lines": ctx.vertex_array(prog["lines"], [
+                (self._line_quad, "2f", "in_corner"),
+                (buf, "3f 3f 4f 2f/i", "in_start", "in_end", "in_color", "in_style")]),
+        })
+        self.fbo: moderngl.Framebuffer | None = None
+        self.color_texture: moderngl.Texture | None = None
+        self._depth = None
+        self._msaa = None
+        self._read = None
+        self.size = (0, 0)
+        self.resize(size)
+
+    # -- framebuffers --------------------------------------------------------------------------
+    def resize(self, size: tuple[int, int]) -> None:
+        """Make the framebuffer (width, height) pixels (no-op when unchanged)."""
+        w, h = int(size[0]), int(size[1])
+        if w < 1 or h < 1:
+            raise ValueError(f"framebuffer size must be at least 1x1, got {size}")
+        if (w, h) == self.size:
+            return
+        self._release_targets()
+        self.size = (w, h)
+        self.color_texture = self.ctx.texture((w, h), 4)
+        self._depth = self.ctx.depth_renderbuffer((w, h))
+        self.fbo = self.ctx.framebuffer([self.color_texture], self._depth)
+        if self.samples > 0:
+            self._msaa = self.ctx.framebuffer(
+                [self.ctx.renderbuffer((w, h), 4, samples=self.samples)],
+                self.ctx.depth_renderbuffer((w, h), samples=self.samples))
+        self._read = np.empty((h, w, 3), np.uint8)
+
+    def _release_targets(self) -> None:
+        if self._msaa is not None:
+            for att in (*self._msaa.color_attachments, self._msaa.depth_attachment):
+                att.release()
+            self._msaa.release()
+            self._msaa = None
+        for obj in (self.fbo, self.color_texture, self._depth):
+            if obj is not None:
+                obj.release()
+
+    # -- drawing -------------------------------------------------------------------------------
+    def render(self, scene: Scene, camera: OrbitCamera, *, show_contacts: bool = False,
+               extra_lines=None) -> None:
+        """Draw ``scene`` as seen by ``camera`` into ``fbo``.
+
+        Args:
+            show_contacts: Also draw the world's current contacts (a short line along each
+                normal).
+            extra_lines: Optional list of (start (3,), end (3,), rgb) [m], e.g. a mouse spring.
+        """
+        ctx = self.ctx
+        w, h = self.size
+        target = self._msaa if self._msaa is not None else self.fbo
+        target.use()
+        ctx.viewport = (0, 0, w, h)
+        target.depth_mask = True
+        ctx.clear(*style.SKY_TOP, 1.0, depth=1.0)
+
+        view = camera.view_matrix()
+        proj = camera.projection_matrix(w / h)
+        vp = (view @ proj).astype(np.float32)
+        rot = view[:3, :3].astype(np.float64)           # world -> eye rotation (row vectors)
+        light_eye = style.LIGHT_EYE
+        light_world = rot @ light_eye                    # eye -> world: v @ rot.T
+        sky_eye = np.array([0.0, 1.0, 0.0]) @ rot
+        width_scale = max(1.0, h / 720.0)
+
+        n_drawn = self._upload_spheres(scene)
+        n_lines = self._upload_lines(scene, show_contacts, extra_lines, width_scale)
+
+        # Background gradient, behind everything.
+        ctx.disable(moderngl.DEPTH_TEST | moderngl.BLEND | moderngl.CULL_FACE)
+        bg = self.programs["background"]
+        bg["u_top"].value = style.SKY_TOP
+        bg["u_bottom"].value = style.SKY_HORIZON
+        self._vaos["background"].render(moderngl.TRIANGLE_STRIP, vertices=3)
+
+        ctx.enable(moderngl.DEPTH_TEST)
+        if scene.show_ground:
+            self._draw_ground(scene, camera, vp)
+        self._draw_meshes(scene, vp, light_world, translucent=False)
+
+        n_particles = scene.world.particles.count
+        if scene.show_ground and n_particles:
+            # Blob shadows: blended, on the ground, writing no depth.
+            ctx.enable(moderngl.BLEND)
+            target.depth_mask = False
+            sh = self.programs["shadows"]
+            sh["u_view_proj"].write(vp.tobytes())
+            sh["u_ground"].value = float(scene.ground_height)
+            sh["u_strength"].value = style.SHADOW_STRENGTH
+            self._spheres.vaos["shadows"].render(moderngl.TRIANGLE_STRIP, vertices=4,
+                                                 instances=n_particles)
+            target.depth_mask = True
+            ctx.disable(moderngl.BLEND)
+
+        if n_drawn:
+            sp = self.programs["spheres"]
+            sp["u_view"].write(view.tobytes())
+            sp["u_proj"].write(proj.tobytes())
+            sp["u_light"].value = tuple(light_eye)
+            sp["u_sky"].value = tuple(sky_eye)
+            self._spheres.vaos["spheres"].render(moderngl.TRIANGLE_STRIP, vertices=4,
+                                                 instances=n_drawn)
+
+        ctx.enable(moderngl.BLEND)
+        if n_lines:
+            ln = self.programs["lines"]
+            ln["u_view_proj"].write(vp.tobytes())
+            ln["u_viewport"].value = (float(w), float(h))
+            self._lines.vaos["lines"].render(moderngl.TRIANGLE_STRIP, vertices=4,
+                                             instances=n_lines)
+        target.depth_mask = False
+        self._draw_meshes(scene, vp, light_world, translucent=True)
+        target.depth_mask = True
+        ctx.disable(moderngl.BLEND | moderngl.DEPTH_TEST)
+
+        if self._msaa is not None:
+            ctx.copy_framebuffer(self.fbo, self._msaa)
+
+    def _upload_spheres(self, scene: Scene) -> int:
+        anchors = gather.anchor_points(scene) if scene.show_links else np.zeros((0, 3))
+        self._spheres.reserve(scene.world.particles.count + len(anchors))
+        rows = gather.fill_spheres(scene, self._spheres.host, anchors)
+        self._spheres.upload(rows)
+        return rows
+
+    def _upload_lines(self, scene: Scene, show_contacts: bool, extra_lines,
+                      width_scale: float) -> int:
+        parts: list[np.ndarray] = []
+        if scene.show_links:
+            parts += gather.link_lines(scene, width_scale)
+        if scene.trails:
+            parts += gather.trail_lines(scene, scene.particle_colors(), width_scale)
+        if show_contacts:
+            parts += gather.contact_lines(scene, drawn_radii(scene), width_scale)
+        parts += gather.extra_line_rows(extra_lines, width_scale)
+        for box in scene.boxes:
+            start, end = geometry.box_edges(box.center, box.half_size, box.rotation)
+            rgb = np.asarray(box.color) * (1.0 if box.wireframe else 0.45)
+            width = (2.0 if box.wireframe else 1.5) * width_scale
+            parts.append(gather._rows(start, end, rgb, 1.0, width, 0.0))
+        rows = sum(len(p) for p in parts)
+        if rows:
+            self._lines.reserve(rows)
+            np.concatenate(parts, out=self._lines.host[:rows])
+            self._lines.upload(rows)
+        return rows
+
+    def _draw_ground(self, scene: Scene, camera: OrbitCamera, vp: np.ndarray) -> None:
+        g = self.programs["ground"]
+        t = camera.target
+        g["u_view_proj"].write(vp.tobytes())
+        g["u_center"].value = (float(t[0]), float(scene.ground_height), float(t[2]))
+        g["u_extent"].value = float(max(30.0, 8.0 * camera.distance))
+        g["u_spacing"].value = float(10.0 ** math.floor(math.log10(max(camera.distance, 1e-3)
+                                                                   / 8.0)))
+        g["u_base"].value = style.GROUND_BASE
+        g["u_line"].value = style.GROUND_LINE
+        g["u_fog"].value = style.SKY_HORIZON
+        self._vaos["ground"].render(moderngl.TRIANGLE_STRIP, vertices=4)
+
+    def _draw_meshes(self, scene: Scene, vp: np.ndarray, light_world, translucent: bool) -> None:
+        mesh = self.programs["mesh"]
+        items = []
+        if not translucent:
+            items += [(self._vaos["cube"], geometry.box_model(b.center, b.half_size, b.rotation),
+                       (*b.color, 1.0)) for b in scene.boxes if not b.wireframe]
+        for p in scene.planes:
+            rgba = tuple(p.color) if len(p.color) == 4 else (*p.color, 1.0)
+            if (rgba[3] < 1.0) == translucent:
+                items.append((self._vaos["plane"],
+                              geometry.plane_model(p.center, p.normal, p.half_size), rgba))
+        if not items:
+            return
+        mesh["u_view_proj"].write(vp.tobytes())
+        mesh["u_light"].value = tuple(float(x) for x in light_world)
+        for vao, model, rgba in items:
+            mesh["u_model"].write(geometry.gl_matrix(model))
+            mesh["u_color"].value = tuple(float(x) for x in rgba)
+            vao.render(moderngl.TRIANGLES)
+
+    # -- reading -------------------------------------------------------------------------------
+    def read_rgb(self) -> np.ndarray:
+        """The last rendered image, (H, W, 3) uint8, top row first (a new array)."""
+        self.fbo.read_into(self._read, components=3, alignment=1)
+        return self._read[::-1].copy()
+
+    def release(self) -> None:
+        """Free every GL object this renderer made."""
+        self._release_targets()
+        self._spheres.release()
+        self._lines.release()
+        for vao in self._vaos.values():
+            vao.release()
+        for buf in (self._quad, self._line_quad, self._cube, self._plane):
+            buf.release()
+        for p in self.programs.values():
+            p.release()
+        self.fbo = self.color_texture = None

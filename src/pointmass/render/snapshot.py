@@ -1,0 +1,51 @@
+"""One picture of a running simulation: render offscreen, save as PNG/JPEG."""
+
+from __future__ import annotations
+
+import os
+from pathlib import Path
+
+import numpy as np
+
+from .camera import OrbitCamera
+from .context import create_headless_context
+from .renderer import Renderer
+
+
+def check_writable(path: str | Path) -> Path:
+    """``path`` as a Path, or a PermissionError/FileNotFoundError if its folder cannot take it
+    (checked before any simulation runs)."""
+    path = Path(path)
+    parent = path.parent if str(path.parent) else Path(".")
+    if not parent.is_dir():
+        raise FileNotFoundError(f"cannot write {path}: folder {parent} does not exist")
+    if not os.access(parent, os.W_OK | os.X_OK):
+        raise PermissionError(f"cannot write {path}: folder {parent} is not writable")
+    if path.exists() and not os.access(path, os.W_OK):
+        raise PermissionError(f"cannot write {path}: the file is not writable")
+    return path
+
+
+def save_image(rgb: np.ndarray, path: str | Path) -> None:
+    """Write an (H, W, 3) uint8 image; the format follows the suffix (.png, .jpg, ...)."""
+    from PIL import Image
+
+    Image.fromarray(rgb).save(path)
+
+
+def render_frame(simulation, size: tuple[int, int] = (1280, 720), *, time: float = 0.0,
+                 show_contacts: bool = False) -> np.ndarray:
+    """Advance ``simulation`` (a demo Simulation) by ``time`` seconds and render it offscreen
+    from its camera hint; returns (H, W, 3) uint8, top row first."""
+    if time > 0:
+        simulation.advance(time)
+    ctx = create_headless_context()
+    try:
+        renderer = Renderer(ctx, size)
+        scene = simulation.scene
+        renderer.render(scene, OrbitCamera.from_hint(scene.camera), show_contacts=show_contacts)
+        rgb = renderer.read_rgb()
+        renderer.release()
+        return rgb
+    finally:
+        ctx.release()
