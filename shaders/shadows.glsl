@@ -25,7 +25,7 @@ void main() {
         v_alpha = 0.0;
         return;
     }
-    float s = r * (1.15 + 0.6 * (1.0 - fade));
+    float s = r * (1.3 + 0.7 * (1.0 - fade));
     vec3 p = vec3(in_sphere.x + s * in_corner.x, u_ground, in_sphere.z + s * in_corner.y);
     gl_Position = u_view_proj * vec4(p, 1.0);
     gl_Position.z -= 2e-4 * gl_Position.w;            // just above the ground, no z-fighting
@@ -42,7 +42,7 @@ out vec4 f_color;
 void main() {
     float q = dot(v_uv, v_uv);
     if (q >= 1.0) discard;
-    float a = v_alpha * (1.0 - q) * (1.0 - q);
+    float a = v_alpha * (1.0 - q) * (1.0 - 0.5 * q);
     f_color = vec4(0.0, 0.0, 0.0, a);
 }
 

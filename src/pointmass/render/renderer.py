@@ -98,6 +98,11 @@ class Renderer:
                 (self._quad, "2f", "in_corner"),
                 (buf, "4f 16x/i", "in_sphere")]),
         })
+        self._box_shadows = _Instances(ctx, gather.SPHERE_FLOATS, lambda buf: {
+            "shadows": ctx.vertex_array(prog["shadows"], [
+                (self._quad, "2f", "in_corner"),
+                (buf, "4f 16x/i", "in_sphere")]),
+        })
         self._lines = _Instances(ctx, gather.LINE_FLOATS, lambda buf: {
             "lines": ctx.vertex_array(prog["lines"], [
                 (self._line_quad, "2f", "in_corner"),
@@ -131,6 +136,11 @@ class Renderer:
         self._read = np.empty((h, w, 3), np.uint8)
 
     def _release_targets(self) -> None:
+        # Never leave a deleted framebuffer bound: moderngl rebinds "the current one" after
+        # making the next, which is then GL_INVALID_OPERATION.
+        if self.fbo is not None and self.ctx.fbo in (self.fbo, self._msaa):
+            default = self.ctx.screen or self.ctx.detect_framebuffer(0)
+            default.use()
         if self._msaa is not None:
             for att in (*self._msaa.color_attachments, self._msaa.depth_attachment):
                 att.release()
@@ -170,32 +180,11 @@ class Renderer:
         n_drawn = self._upload_spheres(scene)
         n_lines = self._upload_lines(scene, show_contacts, extra_lines, width_scale)
 
-        # Background gradient, behind everything.
-        ctx.disable(moderngl.DEPTH_TEST | moderngl.BLEND | moderngl.CULL_FACE)
-        bg = self.programs["background"]
-        bg["u_top"].value = style.SKY_TOP
-        bg["u_bottom"].value = style.SKY_HORIZON
-        self._vaos["background"].render(moderngl.TRIANGLE_STRIP, vertices=3)
-
+        # Opaque things first, spheres before the ground: the ground, shadows and sky then
+        # skip (early depth test) every pixel a sphere already covers, which matters on a
+        # software rasterizer.
         ctx.enable(moderngl.DEPTH_TEST)
-        if scene.show_ground:
-            self._draw_ground(scene, camera, vp)
-        self._draw_meshes(scene, vp, light_world, translucent=False)
-
-        n_particles = scene.world.particles.count
-        if scene.show_ground and n_particles:
-            # Blob shadows: blended, on the ground, writing no depth.
-            ctx.enable(moderngl.BLEND)
-            target.depth_mask = False
-            sh = self.programs["shadows"]
-            sh["u_view_proj"].write(vp.tobytes())
-            sh["u_ground"].value = float(scene.ground_height)
-            sh["u_strength"].value = style.SHADOW_STRENGTH
-            self._spheres.vaos["shadows"].render(moderngl.TRIANGLE_STRIP, vertices=4,
-                                                 instances=n_particles)
-            target.depth_mask = True
-            ctx.disable(moderngl.BLEND)
-
+        ctx.disable(moderngl.BLEND | moderngl.CULL_FACE)
         if n_drawn:
             sp = self.programs["spheres"]
             sp["u_view"].write(view.tobytes())
@@ -204,6 +193,35 @@ class Renderer:
             sp["u_sky"].value = tuple(sky_eye)
             self._spheres.vaos["spheres"].render(moderngl.TRIANGLE_STRIP, vertices=4,
                                                  instances=n_drawn)
+        self._draw_meshes(scene, vp, light_world, translucent=False)
+        if scene.show_ground:
+            self._draw_ground(scene, camera, vp)
+
+        n_particles = scene.world.particles.count
+        if scene.show_ground and (n_particles or scene.boxes):
+            # Blob shadows: blended onto the ground, writing no depth.
+            ctx.enable(moderngl.BLEND)
+            target.depth_mask = False
+            sh = self.programs["shadows"]
+            sh["u_view_proj"].write(vp.tobytes())
+            sh["u_ground"].value = float(scene.ground_height)
+            sh["u_strength"].value = style.SHADOW_STRENGTH
+            self._spheres.vaos["shadows"].render(moderngl.TRIANGLE_STRIP, vertices=4,
+                                                 instances=n_particles)
+            n_boxes = self._upload_box_shadows(scene)
+            if n_boxes:
+                self._box_shadows.vaos["shadows"].render(moderngl.TRIANGLE_STRIP, vertices=4,
+                                                         instances=n_boxes)
+            target.depth_mask = True
+            ctx.disable(moderngl.BLEND)
+
+        # The sky gradient last, at the far plane: only still-empty pixels pass the depth test.
+        ctx.depth_func = "<="
+        bg = self.programs["background"]
+        bg["u_top"].value = style.SKY_TOP
+        bg["u_bottom"].value = style.SKY_HORIZON
+        self._vaos["background"].render(moderngl.TRIANGLE_STRIP, vertices=3)
+        ctx.depth_func = "<"
 
         ctx.enable(moderngl.BLEND)
         if n_lines:
@@ -226,6 +244,19 @@ class Renderer:
         rows = gather.fill_spheres(scene, self._spheres.host, anchors)
         self._spheres.upload(rows)
         return rows
+
+    def _upload_box_shadows(self, scene: Scene) -> int:
+        """One blob per solid box, as if it were a ball of about its size."""
+        boxes = [b for b in scene.boxes if not b.wireframe]
+        if not boxes:
+            return 0
+        self._box_shadows.reserve(len(boxes))
+        host = self._box_shadows.host
+        for i, b in enumerate(boxes):
+            host[i, 0:3] = b.center
+            host[i, 3] = 0.75 * float(np.linalg.norm(b.half_size))
+        self._box_shadows.upload(len(boxes))
+        return len(boxes)
 
     def _upload_lines(self, scene: Scene, show_contacts: bool, extra_lines,
                       width_scale: float) -> int:
@@ -255,8 +286,9 @@ class Renderer:
         g["u_view_proj"].write(vp.tobytes())
         g["u_center"].value = (float(t[0]), float(scene.ground_height), float(t[2]))
         g["u_extent"].value = float(max(30.0, 8.0 * camera.distance))
+        # 1 m cells from 5 m to 50 m away, 10 cm closer, 10 m further.
         g["u_spacing"].value = float(10.0 ** math.floor(math.log10(max(camera.distance, 1e-3)
-                                                                   / 8.0)))
+                                                                   / 5.0)))
         g["u_base"].value = style.GROUND_BASE
         g["u_line"].value = style.GROUND_LINE
         g["u_fog"].value = style.SKY_HORIZON
@@ -292,6 +324,7 @@ class Renderer:
         """Free every GL object this renderer made."""
         self._release_targets()
         self._spheres.release()
+        self._box_shadows.release()
         self._lines.release()
         for vao in self._vaos.values():
             vao.release()

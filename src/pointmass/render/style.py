@@ -11,7 +11,7 @@ SKY_HORIZON = (0.40, 0.44, 0.50)
 GROUND_BASE = (0.27, 0.29, 0.32)
 GROUND_LINE = (0.47, 0.50, 0.55)
 #: Darkness of a blob shadow under a sphere resting on the ground, in [0, 1].
-SHADOW_STRENGTH = 0.7
+SHADOW_STRENGTH = 0.75
 
 #: Light direction in eye space (toward the light): above, left of and behind the viewer.
 LIGHT_EYE = np.array([-0.35, 0.75, 0.55]) / np.linalg.norm([-0.35, 0.75, 0.55])

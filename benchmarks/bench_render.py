@@ -1,0 +1,159 @@
+"""Rendering and recording speed on this machine (no assertions; prints figures and ratios).
+
+    .venv/bin/python benchmarks/bench_render.py [--spheres 10000] [--frames 60] [--size 1280x720]
+
+1. Full renderer (ground, blob shadows, impostor spheres, links) + readback, frames/s.
+2. A bare instanced-impostor draw of the same spheres (spheres.glsl alone, one upload, no ground,
+   no shadows) + the same readback, in the same run: the ratio full / bare.
+3. Recording a 720p mp4 (render + readback + encode in a thread) vs encoding the same frames
+   alone: the ratio record / encode-only.
+"""
+
+from __future__ import annotations
+
+import argparse
+import io
+import tempfile
+import time
+from pathlib import Path
+
+import moderngl
+import numpy as np
+
+import pointmass as pm
+from pointmass.render import OrbitCamera, Renderer, create_headless_context
+from pointmass.render.video import VideoWriter
+
+
+def sphere_scene(count: int, seed: int = 0) -> pm.Scene:
+    """``count`` spheres (r = 0.12 m) over a 24 × 24 m patch, up to 3 m high; 1000 springs."""
+    rng = np.random.default_rng(seed)
+    world = pm.World()
+    pos = np.c_[rng.uniform(-12, 12, count), rng.uniform(0.12, 3.0, count),
+                rng.uniform(-12, 12, count)]
+    # Every other pair of the first 2000 is a short spring (a partner 0.5 m away).
+    springs = np.arange(0, min(count, 2000) - 1, 2)
+    pos[springs + 1] = pos[springs] + rng.normal(0.0, 0.3, (len(springs), 3))
+    pos[:, 1] = np.abs(pos[:, 1] - 0.12) + 0.12
+    world.add_particles(pos, radii=0.12)
+    world.add(pm.Spring(springs, springs + 1, 10.0, 0.5))
+    return pm.Scene(world, camera=pm.CameraHint(target=(0, 0.5, 0), distance=26, yaw=30,
+                                                pitch=28))
+
+
+def timed(fn, frames: int, warmup: int = 3) -> float:
+    """Frames per second of ``fn`` (after a warm-up)."""
+    for _ in range(warmup):
+        fn()
+    t0 = time.perf_counter()
+    for _ in range(frames):
+        fn()
+    return frames / (time.perf_counter() - t0)
+
+
+def bare_impostors(ctx: moderngl.Context, renderer: Renderer, scene: pm.Scene, camera):
+    """A minimal instanced-impostor draw of the scene's spheres into the renderer's fbo."""
+    prog = renderer.programs["spheres"]
+    quad = ctx.buffer(np.array([-1, -1, 1, -1, -1, 1, 1, 1], "f4").tobytes())
+    p = scene.world.particles
+    data = np.zeros((p.count, 8), "f4")
+    inst = ctx.buffer(reserve=data.nbytes, dynamic=True)
+    vao = ctx.vertex_array(prog, [(quad, "2f", "in_corner"),
+                                  (inst, "4f 4f/i", "in_sphere", "in_color")])
+    w, h = renderer.size
+    view, proj = camera.view_matrix(), camera.projection_matrix(w / h)
+    colors = scene.particle_colors()
+
+    def frame() -> None:
+        data[:, 0:3] = p.position
+        data[:, 3] = p.radius
+        data[:, 4:7] = colors
+        inst.write(data)
+        renderer.fbo.use()
+        ctx.clear(0.1, 0.1, 0.1, 1.0, depth=1.0)
+        ctx.enable(moderngl.DEPTH_TEST)
+        prog["u_view"].write(view.tobytes())
+        prog["u_proj"].write(proj.tobytes())
+        prog["u_light"].value = (0.0, 0.6, 0.8)
+        prog["u_sky"].value = (0.0, 1.0, 0.0)
+        vao.render(moderngl.TRIANGLE_STRIP, vertices=4, instances=p.count)
+        renderer.read_rgb()
+
+    return frame
+
+
+def main() -> None:
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--spheres", type=int, default=10_000)
+    ap.add_argument("--frames", type=int, default=60)
+    ap.add_argument("--size", default="1280x720")
+    ap.add_argument("--record-frames", type=int, default=90)
+    ap.add_argument("--save", help="write the full renderer's frame to this PNG")
+    args = ap.parse_args()
+    size = tuple(int(x) for x in args.size.split("x"))
+
+    ctx = create_headless_context()
+    scene = sphere_scene(args.spheres)
+    camera = OrbitCamera.from_hint(scene.camera)
+    renderer = Renderer(ctx, size)
+
+    def full() -> None:
+        renderer.render(scene, camera)
+        renderer.read_rgb()
+
+    def full_no_read() -> None:
+        renderer.render(scene, camera)
+        ctx.finish()
+
+    print(f"{ctx.info['GL_RENDERER']}, {size[0]}x{size[1]}, {args.spheres} spheres")
+    fps_full = timed(full, args.frames)
+    fps_full_nr = timed(full_no_read, args.frames)
+    if args.save:
+        from PIL import Image
+        renderer.render(scene, camera)
+        Image.fromarray(renderer.read_rgb()).save(args.save)
+    bare = bare_impostors(ctx, renderer, scene, camera)
+    fps_bare = timed(bare, args.frames)
+    fps_read = timed(renderer.read_rgb, args.frames)
+    print(f"full renderer + readback : {fps_full:6.1f} frames/s")
+    print(f"full renderer, no read   : {fps_full_nr:6.1f} frames/s")
+    print(f"bare impostors + readback: {fps_bare:6.1f} frames/s")
+    print(f"readback alone           : {fps_read:6.1f} frames/s")
+    print(f"ratio full / bare        : {fps_full / fps_bare:6.2f}")
+
+    # Recording: the side-library demo at 720p, vs encoding its frames alone.
+    from pointmass.demo import Simulation, load_demo
+    from pointmass.render.recording import record
+
+    n = args.record_frames
+    with tempfile.TemporaryDirectory() as tmp:
+        sim = Simulation(load_demo("side_library"))
+        result = record(sim, Path(tmp) / "rec.mp4", seconds=n / 30, fps=30, size=(1280, 720),
+                        progress=False, ctx=ctx)
+        fps_record = result.frames / result.seconds
+        sim = Simulation(load_demo("side_library"))
+        r2 = Renderer(ctx, (1280, 720))
+        cam2 = OrbitCamera.from_hint(sim.scene.camera)
+        frames = []
+        for _ in range(n):
+            r2.render(sim.scene, cam2)
+            frames.append(r2.read_rgb())
+            sim.advance(1 / 30)
+        fps_render_only = n / (lambda t0: (
+            [r2.render(sim.scene, cam2) or r2.read_rgb() for _ in range(n)],
+            time.perf_counter() - t0)[1])(time.perf_counter())
+        t0 = time.perf_counter()
+        with VideoWriter(Path(tmp) / "enc.mp4", (1280, 720), 30) as w:
+            for f in frames:
+                w.write(f)
+        fps_encode = n / (time.perf_counter() - t0)
+        r2.release()
+    print(f"record 720p mp4          : {fps_record:6.1f} frames/s ({n} frames, side_library)")
+    print(f"render + read only       : {fps_render_only:6.1f} frames/s")
+    print(f"encode only              : {fps_encode:6.1f} frames/s")
+    print(f"ratio record / encode    : {fps_record / fps_encode:6.2f}")
+    _ = io
+
+
+if __name__ == "__main__":
+    main()
