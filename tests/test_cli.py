@@ -1,0 +1,117 @@
+"""The ``pointmass`` command line: list, render, record, run without a display, bad input."""
+
+from __future__ import annotations
+
+import subprocess
+import sys
+
+import pytest
+
+from pointmass.cli import main, parse_size
+
+
+@pytest.fixture
+def egl():
+    """Skip without EGL, unless POINTMASS_REQUIRE_GL=1 (then fail)."""
+    import os
+
+    try:
+        from pointmass.render import create_headless_context
+
+        create_headless_context().release()
+    except Exception as exc:
+        if os.environ.get("POINTMASS_REQUIRE_GL", "") not in ("", "0"):
+            pytest.fail(f"POINTMASS_REQUIRE_GL=1 but no EGL context: {exc}")
+        pytest.skip(f"no EGL OpenGL context: {exc}")
+
+
+def test_list_names_the_side_library_demo(capsys):
+    assert main(["list"]) == 0
+    out = capsys.readouterr().out
+    assert "side_library" in out and "Side library" in out
+
+
+def test_python_dash_m_runs(tmp_path):
+    done = subprocess.run([sys.executable, "-m", "pointmass", "list"], capture_output=True,
+                          text=True, check=False)
+    assert done.returncode == 0 and "side_library" in done.stdout
+
+
+def test_parse_size():
+    assert parse_size("1280x720") == (1280, 720)
+    for bad in ("12", "0x10", "abcx10", "100000x10"):
+        with pytest.raises(Exception, match="--size"):
+            parse_size(bad)
+
+
+@pytest.mark.parametrize("argv, needle", [
+    (["render", "no_such_demo", "-o", "{tmp}/x.png"], "unknown demo"),
+    (["render", "side_library", "-o", "{tmp}/x.png", "--set", "spin"], "name=value"),
+    (["render", "side_library", "-o", "{tmp}/x.png", "--set", "spin=9999"], "spin"),
+    (["render", "side_library", "-o", "{tmp}/x.png", "--set", "nope=1"], "unknown parameter"),
+    (["render", "side_library", "-o", "{tmp}/x.png", "--size", "big"], "--size"),
+    (["render", "side_library", "-o", "{tmp}/x.txt"], "image file"),
+    (["render", "side_library", "-o", "{tmp}/missing/x.png"], "does not exist"),
+    (["record", "side_library", "-o", "{tmp}/missing/x.mp4"], "does not exist"),
+    (["record", "side_library", "-o", "{tmp}/x.avi"], ".mp4"),
+    (["record", "side_library", "-o", "{tmp}/x.mp4", "--fps", "0"], "--fps"),
+    (["record", "side_library", "-o", "{tmp}/x.mp4", "--seconds", "-1"], "--seconds"),
+    (["run", "no_such_demo"], "unknown demo"),
+    (["bogus"], "invalid choice"),
+])
+def test_bad_input_is_one_line_and_exit_2(tmp_path, capsys, argv, needle):
+    argv = [a.replace("{tmp}", str(tmp_path)) for a in argv]
+    try:
+        code = main(argv)
+    except SystemExit as exc:      # argparse's own errors
+        code = exc.code
+    err = capsys.readouterr().err
+    assert code == 2
+    assert needle in err
+    assert len(err.strip().splitlines()) == 1 and "Traceback" not in err
+
+
+def test_run_without_display_says_what_to_do(monkeypatch, capsys):
+    """No DISPLAY on Linux: exit 2 naming `pointmass record` and xvfb-run; pyglet not loaded."""
+    monkeypatch.setattr(sys, "platform", "linux")
+    monkeypatch.delenv("DISPLAY", raising=False)
+    monkeypatch.delenv("WAYLAND_DISPLAY", raising=False)
+    assert main(["run", "side_library"]) == 2
+    err = capsys.readouterr().err
+    assert "pointmass record" in err and "xvfb-run" in err
+    assert "pyglet" not in sys.modules or "pointmass.app" not in sys.modules
+
+
+def test_run_dispatches_to_the_app(monkeypatch):
+    """With a display, ``run`` calls pointmass.app.run_demo(name, overrides, paused)."""
+    import types
+
+    calls = []
+    fake = types.ModuleType("pointmass.app")
+    fake.run_demo = lambda name, overrides, paused: calls.append((name, overrides, paused))
+    monkeypatch.setitem(sys.modules, "pointmass.app", fake)
+    monkeypatch.setenv("DISPLAY", ":99")
+    assert main(["run", "side_library", "--set", "spin=10", "--paused"]) == 0
+    assert calls == [("side_library", ["spin=10"], True)]
+
+
+@pytest.mark.gl
+def test_render_writes_a_png(egl, tmp_path, capsys):
+    from PIL import Image
+
+    out = tmp_path / "shot.png"
+    assert main(["render", "side_library", "-o", str(out), "--size", "80x60",
+                 "--time", "0.5", "--set", "spin=90"]) == 0
+    assert Image.open(out).size == (80, 60)
+    assert "wrote" in capsys.readouterr().out
+
+
+@pytest.mark.gl
+def test_record_writes_an_mp4(egl, tmp_path, capsys):
+    av = pytest.importorskip("av")
+
+    out = tmp_path / "clip.mp4"
+    assert main(["record", "side_library", "-o", str(out), "--size", "64x48", "--seconds",
+                 "0.2", "--fps", "20", "--quiet"]) == 0
+    with av.open(str(out)) as c:
+        assert sum(1 for _ in c.decode(video=0)) == 4

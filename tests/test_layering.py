@@ -1,0 +1,38 @@
+"""Import layering: the core stays light, and the renderer never pulls in the window toolkit."""
+
+from __future__ import annotations
+
+import json
+import subprocess
+import sys
+
+import pytest
+
+
+def _loaded_after(statement: str, modules: list[str]) -> list[str]:
+    code = (f"import sys, json\n{statement}\n"
+            f"print(json.dumps([m for m in {modules!r} if m in sys.modules]))")
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
+                         check=True, env={"PATH": "/usr/bin:/bin"})
+    return json.loads(out.stdout.strip().splitlines()[-1])
+
+
+def test_import_pointmass_loads_no_graphics():
+    """``import pointmass`` loads none of moderngl, pyglet, pyrr, imgui_bundle, av."""
+    heavy = ["moderngl", "pyglet", "pyrr", "imgui_bundle", "av", "PIL"]
+    assert _loaded_after("import pointmass", heavy) == []
+
+
+def test_import_cli_loads_no_graphics():
+    """The command line module alone (``pointmass list``) loads no GL or window code."""
+    heavy = ["moderngl", "pyglet", "pyrr", "imgui_bundle", "av"]
+    assert _loaded_after("import pointmass.cli", heavy) == []
+
+
+def test_import_render_loads_no_pyglet():
+    """``pointmass.render`` (and its recorder) never import pyglet or imgui."""
+    pytest.importorskip("moderngl")
+    pytest.importorskip("pyrr")
+    stmt = ("import pointmass.render, pointmass.render.recording, pointmass.render.video, "
+            "pointmass.render.snapshot")
+    assert _loaded_after(stmt, ["pyglet", "imgui_bundle"]) == []
