@@ -19,45 +19,14 @@ import numpy as np
 from ..scene import Scene
 from . import gather, geometry, style
 from .camera import OrbitCamera
+from .instances import Instances
 from .picking import drawn_radii
 from .shaders import load_program
+from .shadows import ShadowMap
 
 _QUAD = np.array([-1, -1, 1, -1, -1, 1, 1, 1], np.float32)       # triangle strip, [-1, 1]^2
+_PROGRAMS = ("background", "ground", "spheres", "shadow_map", "lines", "mesh")
 _LINE_QUAD = np.array([0, -1, 1, -1, 0, 1, 1, 1], np.float32)    # along x, across y
-
-
-class _Instances:
-    """A growable GL buffer of float32 instance rows and the vertex arrays that read it."""
-
-    def __init__(self, ctx: moderngl.Context, floats: int, make_vaos) -> None:
-        self.ctx, self.floats, self.make_vaos = ctx, floats, make_vaos
-        self.capacity = 0
-        self.buffer = None
-        self.vaos: dict = {}
-        self.host = np.zeros((0, floats), np.float32)
-        self.reserve(1024)
-
-    def reserve(self, rows: int) -> None:
-        if rows <= self.capacity:
-            return
-        self.capacity = max(rows, 2 * self.capacity)
-        self.host = np.zeros((self.capacity, self.floats), np.float32)
-        for vao in self.vaos.values():
-            vao.release()
-        if self.buffer is not None:
-            self.buffer.release()
-        self.buffer = self.ctx.buffer(reserve=self.capacity * self.floats * 4, dynamic=True)
-        self.vaos = self.make_vaos(self.buffer)
-
-    def upload(self, rows: int) -> None:
-        if rows:
-            self.buffer.write(memoryview(self.host[:rows]))
-
-    def release(self) -> None:
-        for vao in self.vaos.values():
-            vao.release()
-        if self.buffer is not None:
-            self.buffer.release()
 
 
 class Renderer:
@@ -75,8 +44,7 @@ class Renderer:
                  samples: int = 0, shader_dir: str | Path | None = None) -> None:
         self.ctx = ctx
         self.samples = int(samples)
-        prog = {name: load_program(ctx, name, shader_dir)
-                for name in ("background", "ground", "spheres", "shadows", "lines", "mesh")}
+        prog = {name: load_program(ctx, name, shader_dir) for name in _PROGRAMS}
         self.programs = prog
         self._quad = ctx.buffer(_QUAD.tobytes())
         self._line_quad = ctx.buffer(_LINE_QUAD.tobytes())
@@ -90,20 +58,14 @@ class Renderer:
             "plane": ctx.vertex_array(prog["mesh"], [(self._plane, "3f 3f", "in_position",
                                                        "in_normal")]),
         }
-        self._spheres = _Instances(ctx, gather.SPHERE_FLOATS, lambda buf: {
+        self._spheres = Instances(ctx, gather.SPHERE_FLOATS, lambda buf: {
             "spheres": ctx.vertex_array(prog["spheres"], [
                 (self._quad, "2f", "in_corner"),
                 (buf, "4f 4f/i", "in_sphere", "in_color")]),
-            "shadows": ctx.vertex_array(prog["shadows"], [
-                (self._quad, "2f", "in_corner"),
-                (buf, "4f 16x/i", "in_sphere")]),
+            "shadow_map": ctx.vertex_array(prog["shadow_map"], [(buf, "4f 16x", "in_sphere")]),
         })
-        self._box_shadows = _Instances(ctx, gather.SPHERE_FLOATS, lambda buf: {
-            "shadows": ctx.vertex_array(prog["shadows"], [
-                (self._quad, "2f", "in_corner"),
-                (buf, "4f 16x/i", "in_sphere")]),
-        })
-        self._lines = _Instances(ctx, gather.LINE_FLOATS, lambda buf: {
+        self._shadows = ShadowMap(ctx, prog["shadow_map"])
+        self._lines = Instances(ctx, gather.LINE_FLOATS, lambda buf: {
             "lines": ctx.vertex_array(prog["lines"], [
                 (self._line_quad, "2f", "in_corner"),
                 (buf, "3f 3f 4f 2f/i", "in_start", "in_end", "in_color", "in_style")]),
@@ -162,58 +124,43 @@ class Renderer:
         """
         ctx = self.ctx
         w, h = self.size
+        view = camera.view_matrix()
+        proj = camera.projection_matrix(w / h)
+        vp = (view @ proj).astype(np.float32)
+        rot = view[:3, :3].astype(np.float64)           # world -> eye rotation (row vectors)
+        light_world = rot @ style.LIGHT_EYE              # eye -> world: v @ rot.T
+        sky_eye = np.array([0.0, 1.0, 0.0]) @ rot
+        width_scale = max(1.0, h / 720.0)
+
+        n_spheres = self._upload_spheres(scene)
+        n_lines = self._upload_lines(scene, show_contacts, extra_lines, width_scale)
+        if scene.show_ground:
+            n = scene.world.particles.count           # anchors cast no shadow
+            self._shadows.update(scene, self._spheres.host[:n], self._spheres.vaos["shadow_map"],
+                                 style.SHADOW_STRENGTH)
+
         target = self._msaa if self._msaa is not None else self.fbo
         target.use()
         ctx.viewport = (0, 0, w, h)
         target.depth_mask = True
         ctx.clear(*style.SKY_TOP, 1.0, depth=1.0)
 
-        view = camera.view_matrix()
-        proj = camera.projection_matrix(w / h)
-        vp = (view @ proj).astype(np.float32)
-        rot = view[:3, :3].astype(np.float64)           # world -> eye rotation (row vectors)
-        light_eye = style.LIGHT_EYE
-        light_world = rot @ light_eye                    # eye -> world: v @ rot.T
-        sky_eye = np.array([0.0, 1.0, 0.0]) @ rot
-        width_scale = max(1.0, h / 720.0)
-
-        n_drawn = self._upload_spheres(scene)
-        n_lines = self._upload_lines(scene, show_contacts, extra_lines, width_scale)
-
-        # Opaque things first, spheres before the ground: the ground, shadows and sky then
-        # skip (early depth test) every pixel a sphere already covers, which matters on a
-        # software rasterizer.
+        # Opaque things first, spheres before the ground: the ground and the sky then skip
+        # (early depth test) every pixel a sphere already covers, which matters on a software
+        # rasterizer.
         ctx.enable(moderngl.DEPTH_TEST)
         ctx.disable(moderngl.BLEND | moderngl.CULL_FACE)
-        if n_drawn:
+        if n_spheres:
             sp = self.programs["spheres"]
             sp["u_view"].write(view.tobytes())
             sp["u_proj"].write(proj.tobytes())
-            sp["u_light"].value = tuple(light_eye)
-            sp["u_sky"].value = tuple(sky_eye)
+            sp["u_light"].value = tuple(float(x) for x in style.LIGHT_EYE)
+            sp["u_sky"].value = tuple(float(x) for x in sky_eye)
             self._spheres.vaos["spheres"].render(moderngl.TRIANGLE_STRIP, vertices=4,
-                                                 instances=n_drawn)
+                                                 instances=n_spheres)
         self._draw_meshes(scene, vp, light_world, translucent=False)
         if scene.show_ground:
             self._draw_ground(scene, camera, vp)
-
-        n_particles = scene.world.particles.count
-        if scene.show_ground and (n_particles or scene.boxes):
-            # Blob shadows: blended onto the ground, writing no depth.
-            ctx.enable(moderngl.BLEND)
-            target.depth_mask = False
-            sh = self.programs["shadows"]
-            sh["u_view_proj"].write(vp.tobytes())
-            sh["u_ground"].value = float(scene.ground_height)
-            sh["u_strength"].value = style.SHADOW_STRENGTH
-            self._spheres.vaos["shadows"].render(moderngl.TRIANGLE_STRIP, vertices=4,
-                                                 instances=n_particles)
-            n_boxes = self._upload_box_shadows(scene)
-            if n_boxes:
-                self._box_shadows.vaos["shadows"].render(moderngl.TRIANGLE_STRIP, vertices=4,
-                                                         instances=n_boxes)
-            target.depth_mask = True
-            ctx.disable(moderngl.BLEND)
 
         # The sky gradient last, at the far plane: only still-empty pixels pass the depth test.
         ctx.depth_func = "<="
@@ -233,30 +180,18 @@ class Renderer:
         target.depth_mask = False
         self._draw_meshes(scene, vp, light_world, translucent=True)
         target.depth_mask = True
-        ctx.disable(moderngl.BLEND | moderngl.DEPTH_TEST)
+        ctx.disable(moderngl.BLEND | moderngl.DEPTH_TEST | moderngl.PROGRAM_POINT_SIZE)
 
         if self._msaa is not None:
             ctx.copy_framebuffer(self.fbo, self._msaa)
 
     def _upload_spheres(self, scene: Scene) -> int:
+        """Particles then anchor markers, one row each, in one upload; returns the rows."""
         anchors = gather.anchor_points(scene) if scene.show_links else np.zeros((0, 3))
         self._spheres.reserve(scene.world.particles.count + len(anchors))
         rows = gather.fill_spheres(scene, self._spheres.host, anchors)
         self._spheres.upload(rows)
         return rows
-
-    def _upload_box_shadows(self, scene: Scene) -> int:
-        """One blob per solid box, as if it were a ball of about its size."""
-        boxes = [b for b in scene.boxes if not b.wireframe]
-        if not boxes:
-            return 0
-        self._box_shadows.reserve(len(boxes))
-        host = self._box_shadows.host
-        for i, b in enumerate(boxes):
-            host[i, 0:3] = b.center
-            host[i, 3] = 0.75 * float(np.linalg.norm(b.half_size))
-        self._box_shadows.upload(len(boxes))
-        return len(boxes)
 
     def _upload_lines(self, scene: Scene, show_contacts: bool, extra_lines,
                       width_scale: float) -> int:
@@ -292,6 +227,9 @@ class Renderer:
         g["u_base"].value = style.GROUND_BASE
         g["u_line"].value = style.GROUND_LINE
         g["u_fog"].value = style.SKY_HORIZON
+        g["u_shadow_region"].value = self._shadows.region
+        g["u_shadow"].value = 0
+        self._shadows.texture.use(0)
         self._vaos["ground"].render(moderngl.TRIANGLE_STRIP, vertices=4)
 
     def _draw_meshes(self, scene: Scene, vp: np.ndarray, light_world, translucent: bool) -> None:
@@ -324,7 +262,7 @@ class Renderer:
         """Free every GL object this renderer made."""
         self._release_targets()
         self._spheres.release()
-        self._box_shadows.release()
+        self._shadows.release()
         self._lines.release()
         for vao in self._vaos.values():
             vao.release()
