@@ -1,6 +1,7 @@
 #version 330 core
 // The ground: one large quad with a procedural, anti-aliased grid (1 m lines, bolder every
-// 5 m) that fades out with distance, darkened by the blob-shadow texture.
+// 5 m) that fades out with distance. Shadows go on top (shadow_overlay.glsl), so the ground
+// and sky can be kept from frame to frame while the camera stays put.
 
 #if defined VERTEX_SHADER
 
@@ -24,13 +25,11 @@ uniform float u_spacing;  // minor grid spacing [m]
 uniform vec3 u_base;
 uniform vec3 u_line;
 uniform vec3 u_fog;       // color far away (the horizon)
-uniform sampler2D u_shadow;   // darkness from shadow_map.glsl (r channel)
-uniform vec3 u_shadow_region; // x0, z0 [m] and side [m] the shadow texture covers
 out vec4 f_color;
 
-float grid(vec2 p, float spacing, float width) {
+float grid(vec2 p, vec2 dp, float spacing, float width) {
     vec2 q = p / spacing;
-    vec2 w = fwidth(q);
+    vec2 w = dp / spacing;
     vec2 g = abs(fract(q - 0.5) - 0.5) / max(w, 1e-6);
     float line = 1.0 - min(min(g.x, g.y) / width, 1.0);
     // Fade lines out where cells shrink below a few pixels (avoids moiré).
@@ -39,13 +38,10 @@ float grid(vec2 p, float spacing, float width) {
 
 void main() {
     vec2 p = v_world.xz;
-    float minor = grid(p, u_spacing, 1.0);
-    float major = grid(p, u_spacing * 5.0, 1.6);
+    vec2 dp = fwidth(p);
+    float minor = grid(p, dp, u_spacing, 1.0);
+    float major = grid(p, dp, u_spacing * 5.0, 1.6);
     vec3 rgb = mix(u_base, u_line, max(0.55 * minor, major));
-    vec2 uv = (p - u_shadow_region.xy) / u_shadow_region.z;
-    if (u_shadow_region.z > 0.0 && all(greaterThan(uv, vec2(0.0))) && all(lessThan(uv, vec2(1.0)))) {
-        rgb *= 1.0 - texture(u_shadow, uv).r;
-    }
     float d = length(v_world.xz - u_center.xz) / u_extent;
     rgb = mix(rgb, u_fog, smoothstep(0.35, 1.0, d));
     f_color = vec4(rgb, 1.0);

@@ -25,7 +25,8 @@ from .shaders import load_program
 from .shadows import ShadowMap
 
 _QUAD = np.array([-1, -1, 1, -1, -1, 1, 1, 1], np.float32)       # triangle strip, [-1, 1]^2
-_PROGRAMS = ("background", "ground", "spheres", "shadow_map", "lines", "mesh")
+_PROGRAMS = ("background", "ground", "spheres", "shadow_map", "shadow_overlay", "lines",
+             "mesh")
 _LINE_QUAD = np.array([0, -1, 1, -1, 0, 1, 1, 1], np.float32)    # along x, across y
 
 
@@ -53,6 +54,8 @@ class Renderer:
         self._vaos = {
             "background": ctx.vertex_array(prog["background"], []),
             "ground": ctx.vertex_array(prog["ground"], [(self._quad, "2f", "in_corner")]),
+            "shadow_overlay": ctx.vertex_array(prog["shadow_overlay"],
+                                               [(self._quad, "2f", "in_corner")]),
             "cube": ctx.vertex_array(prog["mesh"], [(self._cube, "3f 3f", "in_position",
                                                       "in_normal")]),
             "plane": ctx.vertex_array(prog["mesh"], [(self._plane, "3f 3f", "in_position",
@@ -75,6 +78,10 @@ class Renderer:
         self._depth = None
         self._msaa = None
         self._read = None
+        self._backdrop = None
+        self._backdrop_key = None
+        self.cache_backdrop = True
+        """Keep the sky and ground between frames while the camera stays put (no MSAA)."""
         self.size = (0, 0)
         self.resize(size)
 
@@ -96,6 +103,9 @@ class Renderer:
                 [self.ctx.renderbuffer((w, h), 4, samples=self.samples)],
                 self.ctx.depth_renderbuffer((w, h), samples=self.samples))
         self._read = np.empty((h, w, 3), np.uint8)
+        self._backdrop = self.ctx.framebuffer([self.ctx.texture((w, h), 4)],
+                                              self.ctx.depth_renderbuffer((w, h)))
+        self._backdrop_key = None
 
     def _release_targets(self) -> None:
         # Never leave a deleted framebuffer bound: moderngl rebinds "the current one" after
@@ -108,6 +118,13 @@ class Renderer:
                 att.release()
             self._msaa.release()
             self._msaa = None
+        if self._backdrop is not None:
+            if self.ctx.fbo is self._backdrop:
+                (self.ctx.screen or self.ctx.detect_framebuffer(0)).use()
+            for att in (*self._backdrop.color_attachments, self._backdrop.depth_attachment):
+                att.release()
+            self._backdrop.release()
+            self._backdrop = None
         for obj in (self.fbo, self.color_texture, self._depth):
             if obj is not None:
                 obj.release()
@@ -139,15 +156,22 @@ class Renderer:
             self._shadows.update(scene, self._spheres.host[:n], self._spheres.vaos["shadow_map"],
                                  style.SHADOW_STRENGTH)
 
+        # The backdrop (sky and ground grid) only changes with the camera and the ground, so
+        # it is drawn once into a cache and copied (color and depth) while they stay put: a
+        # recording or a still camera pays one copy per frame instead of two full-screen passes.
         target = self._msaa if self._msaa is not None else self.fbo
-        target.use()
-        ctx.viewport = (0, 0, w, h)
-        target.depth_mask = True
-        ctx.clear(*style.SKY_TOP, 1.0, depth=1.0)
+        key = (view.tobytes(), proj.tobytes(), bool(scene.show_ground),
+               float(scene.ground_height))
+        if self._msaa is None and self.cache_backdrop:
+            if key != self._backdrop_key:
+                self._draw_backdrop(self._backdrop, scene, camera, vp)
+                self._backdrop_key = key
+            ctx.copy_framebuffer(target, self._backdrop)
+            target.use()
+            ctx.viewport = (0, 0, w, h)
+        else:
+            self._draw_backdrop(target, scene, camera, vp)
 
-        # Opaque things first, spheres before the ground: the ground and the sky then skip
-        # (early depth test) every pixel a sphere already covers, which matters on a software
-        # rasterizer.
         ctx.enable(moderngl.DEPTH_TEST)
         ctx.disable(moderngl.BLEND | moderngl.CULL_FACE)
         if n_spheres:
@@ -159,17 +183,20 @@ class Renderer:
             self._spheres.vaos["spheres"].render(moderngl.TRIANGLE_STRIP, vertices=4,
                                                  instances=n_spheres)
         self._draw_meshes(scene, vp, light_world, translucent=False)
-        if scene.show_ground:
-            self._draw_ground(scene, camera, vp)
 
-        # The sky gradient last, at the far plane: only still-empty pixels pass the depth test.
-        ctx.depth_func = "<="
-        bg = self.programs["background"]
-        bg["u_top"].value = style.SKY_TOP
-        bg["u_bottom"].value = style.SKY_HORIZON
-        self._vaos["background"].render(moderngl.TRIANGLE_STRIP, vertices=3)
-        ctx.depth_func = "<"
-
+        ctx.enable(moderngl.BLEND)
+        if scene.show_ground and self._shadows.region[2] > 0:
+            # Shadows after the spheres: ground hidden behind a sphere is skipped early.
+            target.depth_mask = False
+            so = self.programs["shadow_overlay"]
+            so["u_view_proj"].write(vp.tobytes())
+            so["u_shadow_region"].value = self._shadows.region
+            so["u_ground"].value = float(scene.ground_height)
+            so["u_shadow"].value = 0
+            so["u_uv_scale"].value = self._shadows.used / self._shadows.texture.width
+            self._shadows.texture.use(0)
+            self._vaos["shadow_overlay"].render(moderngl.TRIANGLE_STRIP, vertices=4)
+            target.depth_mask = True
         ctx.enable(moderngl.BLEND)
         if n_lines:
             ln = self.programs["lines"]
@@ -184,6 +211,26 @@ class Renderer:
 
         if self._msaa is not None:
             ctx.copy_framebuffer(self.fbo, self._msaa)
+
+    def _draw_backdrop(self, fbo: moderngl.Framebuffer, scene: Scene, camera: OrbitCamera,
+                       vp: np.ndarray) -> None:
+        """Clear ``fbo`` and draw the ground grid and the sky gradient into it."""
+        ctx = self.ctx
+        fbo.use()
+        ctx.viewport = (0, 0, *self.size)
+        fbo.depth_mask = True
+        ctx.clear(*style.SKY_TOP, 1.0, depth=1.0)
+        ctx.enable(moderngl.DEPTH_TEST)
+        ctx.disable(moderngl.BLEND | moderngl.CULL_FACE)
+        if scene.show_ground:
+            self._draw_ground(scene, camera, vp)
+        # The sky at the far plane: only pixels the ground left empty pass the depth test.
+        ctx.depth_func = "<="
+        bg = self.programs["background"]
+        bg["u_top"].value = style.SKY_TOP
+        bg["u_bottom"].value = style.SKY_HORIZON
+        self._vaos["background"].render(moderngl.TRIANGLE_STRIP, vertices=3)
+        ctx.depth_func = "<"
 
     def _upload_spheres(self, scene: Scene) -> int:
         """Particles then anchor markers, one row each, in one upload; returns the rows."""
@@ -227,9 +274,6 @@ class Renderer:
         g["u_base"].value = style.GROUND_BASE
         g["u_line"].value = style.GROUND_LINE
         g["u_fog"].value = style.SKY_HORIZON
-        g["u_shadow_region"].value = self._shadows.region
-        g["u_shadow"].value = 0
-        self._shadows.texture.use(0)
         self._vaos["ground"].render(moderngl.TRIANGLE_STRIP, vertices=4)
 
     def _draw_meshes(self, scene: Scene, vp: np.ndarray, light_world, translucent: bool) -> None:

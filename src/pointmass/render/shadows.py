@@ -18,6 +18,9 @@ from .instances import Instances
 
 #: Texture side [texels].
 TEXELS = 512
+#: Above this many shadow casters only a TEXELS/2 square of the texture is used: a quarter of
+#: the fragments, softer shadows (which crowds hide anyway).
+CROWD = 4000
 #: Largest shadow radius relative to the sphere radius (shadow_map.glsl: 1.3 + 0.7).
 MAX_SPREAD = 2.0
 
@@ -35,6 +38,8 @@ class ShadowMap:
             "map": ctx.vertex_array(program, [(buf, "4f 16x", "in_sphere")])}, capacity=16)
         self.region = (0.0, 0.0, 0.0)
         """x0, z0 of the covered square's corner and its side [m]; side 0: no shadows."""
+        self.used = TEXELS
+        """Side of the texture's corner square in use [texels] (TEXELS, or half for crowds)."""
 
     def update(self, scene: Scene, rows: np.ndarray, vao: moderngl.VertexArray,
                strength: float) -> None:
@@ -52,18 +57,21 @@ class ShadowMap:
             # A box casts the blob of a ball of about its size.
             box_rows[:, 0:3] = [b.center for b in solid]
             box_rows[:, 3] = [0.75 * float(np.linalg.norm(b.half_size)) for b in solid]
-        self.region = _region(np.concatenate([rows[:, :4], box_rows[:, :4]]), ground)
+        self.used = TEXELS if len(rows) <= CROWD else TEXELS // 2
+        self.region = _region(np.concatenate([rows[:, :4], box_rows[:, :4]]), ground,
+                              self.used)
         if self.region[2] <= 0.0:
             return
         prev = self.ctx.fbo
         self.fbo.use()
         self.fbo.clear(0.0, 0.0, 0.0, 0.0)
+        self.ctx.viewport = (0, 0, self.used, self.used)
         self.ctx.enable(moderngl.BLEND | moderngl.PROGRAM_POINT_SIZE)
         self.ctx.disable(moderngl.DEPTH_TEST)
         self.ctx.blend_func = moderngl.ONE, moderngl.ONE_MINUS_SRC_COLOR
         p = self.program
         p["u_region"].value = self.region
-        p["u_texels"].value = float(TEXELS)
+        p["u_texels"].value = float(self.used)
         p["u_ground"].value = ground
         p["u_strength"].value = float(strength)
         if len(rows):
@@ -82,7 +90,7 @@ class ShadowMap:
         self.texture.release()
 
 
-def _region(spheres: np.ndarray, ground: float) -> tuple[float, float, float]:
+def _region(spheres: np.ndarray, ground: float, texels: int) -> tuple[float, float, float]:
     """The square (x0, z0, side) [m] around every shadow cast; side 0 when none is."""
     x, y, z, r = (spheres[:, k] for k in range(4))
     cast = (r > 0) & (y >= ground) & (y - r - ground < 5.0 * r + 1.5)
@@ -92,7 +100,7 @@ def _region(spheres: np.ndarray, ground: float) -> tuple[float, float, float]:
     lo_x, hi_x = float((x[cast] - spread).min()), float((x[cast] + spread).max())
     lo_z, hi_z = float((z[cast] - spread).min()), float((z[cast] + spread).max())
     # Wide enough that the biggest shadow stays under the point-size limit (255 px).
-    side = max(hi_x - lo_x, hi_z - lo_z, 4.5 * float(spread.max()) * TEXELS / 250.0 / 2.0)
-    side *= 1.0 + 2.0 / TEXELS                     # a texel of margin on each side
+    side = max(hi_x - lo_x, hi_z - lo_z, 4.5 * float(spread.max()) * texels / 250.0 / 2.0)
+    side *= 1.0 + 2.0 / texels                     # a texel of margin on each side
     cx, cz = 0.5 * (lo_x + hi_x), 0.5 * (lo_z + hi_z)
     return (cx - 0.5 * side, cz - 0.5 * side, side)
