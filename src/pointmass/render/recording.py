@@ -90,7 +90,8 @@ class _Encoder(threading.Thread):
 def record(simulation, path: str | Path | VideoWriter, *, seconds: float, fps: int = 30,
            size: tuple[int, int] = (1280, 720), progress: bool = True,
            on_frame: Callable[[int], None] | None = None, queue_size: int = 8,
-           show_contacts: bool = False, ctx=None) -> RecordResult:
+           show_contacts: bool = False, ctx=None, renderer: Renderer | None = None
+           ) -> RecordResult:
     """Record ``seconds`` of simulated time of a demo ``Simulation`` to ``path``.
 
     Frame k shows the simulation at its start time + k/fps; after each frame the simulation
@@ -105,6 +106,7 @@ def record(simulation, path: str | Path | VideoWriter, *, seconds: float, fps: i
         on_frame: Called with the frame index after each frame is queued (tests, hooks).
         queue_size: Frames that may wait for the encoder.
         ctx: A moderngl context to reuse (default: a new EGL one, released at the end).
+        renderer: A Renderer to reuse (resized to the video size; not released here).
 
     Returns:
         A RecordResult. Ctrl-C and errors are re-raised after the file is closed.
@@ -115,16 +117,21 @@ def record(simulation, path: str | Path | VideoWriter, *, seconds: float, fps: i
     if writer.note and progress:
         print(f"note: {writer.note}", file=sys.stderr)
     total = max(1, round(seconds * fps))
+    own_renderer = renderer is None
+    if renderer is not None:
+        ctx = renderer.ctx
     own_ctx = ctx is None
     started = time.perf_counter()
     encoder = _Encoder(writer, queue_size)
     bar = ProgressBar(total) if progress else None
     done = 0
-    renderer = None
     try:
         if own_ctx:
             ctx = create_headless_context()
-        renderer = Renderer(ctx, writer.size)
+        if own_renderer:
+            renderer = Renderer(ctx, writer.size)
+        else:
+            renderer.resize(writer.size)
         camera = OrbitCamera.from_hint(simulation.scene.camera)
         encoder.start()
         for index in range(total):
@@ -143,7 +150,7 @@ def record(simulation, path: str | Path | VideoWriter, *, seconds: float, fps: i
         writer.close()
         if bar is not None:
             bar.close()
-        if renderer is not None:
+        if own_renderer and renderer is not None:
             renderer.release()
         if own_ctx and ctx is not None:
             ctx.release()
