@@ -95,6 +95,14 @@ def test_run_dispatches_to_the_app(monkeypatch):
     assert calls == [("side_library", ["spin=10"], True)]
 
 
+def test_run_without_the_viewer_extra_says_how_to_get_it(monkeypatch, capsys):
+    """pointmass.app (or pyglet) missing: one line naming pointmass[viewer], exit 1."""
+    monkeypatch.setitem(sys.modules, "pointmass.app", None)    # makes the import fail
+    monkeypatch.setenv("DISPLAY", ":99")
+    assert main(["run", "side_library"]) == 1
+    assert "pointmass[viewer]" in capsys.readouterr().err
+
+
 @pytest.mark.gl
 def test_render_writes_a_png(egl, tmp_path, capsys):
     from PIL import Image

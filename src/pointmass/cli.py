@@ -21,6 +21,10 @@ class UsageError(Exception):
     """Bad command-line input: reported in one line, exit status 2."""
 
 
+class Failure(Exception):
+    """Something outside the user's input went wrong (a missing extra): one line, exit 1."""
+
+
 class _Parser(argparse.ArgumentParser):
     """argparse that reports errors in one line (no usage dump) with status 2."""
 
@@ -145,8 +149,13 @@ def cmd_run(args) -> int:
             "no display (neither DISPLAY nor WAYLAND_DISPLAY is set): record a video "
             f"instead with `pointmass record {args.demo} -o clip.mp4`, or run under a virtual "
             f"display: `xvfb-run -a pointmass run {args.demo}`")
-    from .app import run_demo
-
+    try:
+        from .app import run_demo
+    except ModuleNotFoundError as exc:
+        if exc.name not in ("pointmass.app", "pyglet", "imgui_bundle"):
+            raise
+        raise Failure(f"the window needs the viewer extra ({exc.name} is missing): "
+                      "pip install 'pointmass[viewer]'") from None
     run_demo(args.demo, overrides=list(args.overrides), paused=args.paused)
     return 0
 
@@ -202,6 +211,9 @@ def main(argv: list[str] | None = None) -> int:
     except UsageError as exc:
         print(f"pointmass: error: {exc}", file=sys.stderr)
         return EXIT_USAGE
+    except Failure as exc:
+        print(f"pointmass: error: {exc}", file=sys.stderr)
+        return EXIT_FAILURE
     except KeyboardInterrupt:
         print("pointmass: interrupted", file=sys.stderr)
         return 130
