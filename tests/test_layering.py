@@ -34,5 +34,5 @@ def test_import_render_loads_no_pyglet():
     pytest.importorskip("moderngl")
     pytest.importorskip("pyrr")
     stmt = ("import pointmass.render, pointmass.render.recording, pointmass.render.video, "
-            "pointmass.render.snapshot")
+            "pointmass.render.snapshot, pointmass.render.notebook")
     assert _loaded_after(stmt, ["pyglet", "imgui_bundle"]) == []

@@ -161,3 +161,12 @@ def test_video_writer_for_the_viewer(tmp_path):
     assert _decode(tmp_path / "v.mp4") == (6, 32, 20, 15.0)
     with pytest.raises(RuntimeError):
         w.write(np.zeros((20, 32, 3), np.uint8))
+
+
+def test_notebook_clip_embeds_an_mp4(gl_session, tmp_path):
+    from pointmass.render.notebook import video
+
+    clip = video(_sim(), seconds=0.2, fps=20, size=(64, 48))
+    assert clip.frames == 4 and clip.size == (64, 48)
+    assert clip._repr_html_().startswith("<video") and "base64," in clip._repr_html_()
+    assert _decode(clip.save(tmp_path / "c.mp4"))[:3] == (4, 64, 48)
