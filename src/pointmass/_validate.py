@@ -37,7 +37,7 @@ def vec3_array(value, name: str, count: int | None = None) -> np.ndarray:
 
 def scalar_array(value, name: str, count: int, *, low: float = -math.inf, high: float = math.inf,
                  low_open: bool = False, high_open: bool = False) -> np.ndarray:
-    """Finite scalars of shape (count,) inside [low, high] (or open ends), broadcasting one value."""
+    """Finite scalars of shape (count,) inside [low, high] (or open ends); one value broadcasts."""
     try:
         arr = np.asarray(value, dtype=np.float64)
     except (TypeError, ValueError):
@@ -51,7 +51,8 @@ def scalar_array(value, name: str, count: int, *, low: float = -math.inf, high: 
     ok = np.isfinite(arr) & lo_ok & hi_ok
     if not ok.all():
         bad = float(arr[np.flatnonzero(~ok)[0]])
-        raise ValueError(f"{name} must be in {_range_text(low, high, low_open, high_open)}, got {bad}")
+        allowed = _range_text(low, high, low_open, high_open)
+        raise ValueError(f"{name} must be in {allowed}, got {bad}")
     return np.ascontiguousarray(arr)
 
 

@@ -26,6 +26,9 @@ class ContactBuffer:
         normal: Unit normal from b to a, shape (M, 3).
         penetration: Overlap depth [m], shape (M,).
         restitution: Coefficient of restitution in [0, 1], shape (M,).
+        key: Identity of the contact across steps, shape (M,), int64; -1 for none. The sweep
+            resolver warm-starts a contact with the impulse that the contact with the same key
+            needed in the previous step (see ``resolver.py``).
     """
 
     def __init__(self, capacity: int = 64) -> None:
@@ -40,12 +43,14 @@ class ContactBuffer:
         normal = np.zeros((capacity, 3))
         pen = np.zeros(capacity)
         rest = np.zeros(capacity)
+        key = np.full(capacity, -1, np.int64)
         if old is not None:
+            key[:n] = self._key[:n]
             a[:n], b[:n] = self._a[:n], self._b[:n]
             normal[:n], pen[:n], rest[:n] = self._normal[:n], self._penetration[:n], \
                 self._restitution[:n]
         self._a, self._b, self._normal = a, b, normal
-        self._penetration, self._restitution = pen, rest
+        self._penetration, self._restitution, self._key = pen, rest, key
         self.capacity = capacity
 
     def reserve(self, extra: int) -> None:
@@ -65,9 +70,11 @@ class ContactBuffer:
     normal = property(lambda self: self._normal[: self.count])
     penetration = property(lambda self: self._penetration[: self.count])
     restitution = property(lambda self: self._restitution[: self.count])
+    key = property(lambda self: self._key[: self.count])
 
-    def add(self, a, b, normal, penetration, restitution) -> None:
-        """Append contacts; each argument is one value or an array of length K (broadcast)."""
+    def add(self, a, b, normal, penetration, restitution, key=-1) -> None:
+        """Append contacts; each argument is one value or an array of length K (broadcast).
+        ``key`` identifies a contact across steps (-1: none, no warm start)."""
         a = np.atleast_1d(np.asarray(a, np.int64))
         k = a.shape[0]
         if k == 0:
@@ -79,12 +86,17 @@ class ContactBuffer:
         self._normal[s] = normal
         self._penetration[s] = penetration
         self._restitution[s] = restitution
+        self._key[s] = key
         self.count += k
 
     def raw(self) -> tuple[np.ndarray, ...]:
         """The full backing arrays (a, b, normal, penetration, restitution) for compiled kernels
-        that append in place; set ``count`` afterwards."""
+        that append in place; set ``count`` afterwards (and ``raw_key`` for keys)."""
         return self._a, self._b, self._normal, self._penetration, self._restitution
+
+    def raw_key(self) -> np.ndarray:
+        """The full backing array of ``key``."""
+        return self._key
 
 
 class ContactGenerator:
@@ -100,7 +112,7 @@ class ContactGenerator:
     def generate(self, particles: Particles, contacts: ContactBuffer) -> None:
         raise NotImplementedError
 
-    def validate(self, particles: Particles) -> None:  # noqa: B027 - optional hook
+    def validate(self, particles: Particles) -> None:
         """Check particle indices when added to a world (raise naming the bad parameter)."""
 
     def segments(self, particles: Particles) -> tuple[np.ndarray, np.ndarray, np.ndarray] | None:

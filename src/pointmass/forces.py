@@ -29,7 +29,7 @@ class ForceGenerator:
     def apply(self, particles: Particles, dt: float) -> None:
         raise NotImplementedError
 
-    def validate(self, particles: Particles) -> None:  # noqa: B027 - optional hook
+    def validate(self, particles: Particles) -> None:
         """Check particle indices when added to a world (raise naming the bad parameter)."""
 
     def potential_energy(self, particles: Particles) -> float:

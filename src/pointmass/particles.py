@@ -71,7 +71,8 @@ class Particles:
     force = property(lambda self: self._force[: self._count], doc="Force accumulator [N], (N, 3).")
     acceleration = property(lambda self: self._acceleration[: self._count],
                             doc="Acceleration of the last integration [m/s²], (N, 3).")
-    inv_mass = property(lambda self: self._inv_mass[: self._count], doc="Inverse mass [1/kg], (N,).")
+    inv_mass = property(lambda self: self._inv_mass[: self._count],
+                        doc="Inverse mass [1/kg], (N,).")
     radius = property(lambda self: self._radius[: self._count], doc="Radius [m], (N,).")
     damping = property(lambda self: self._damping[: self._count],
                        doc="Fraction of velocity kept per second, (N,).")
@@ -107,7 +108,8 @@ class Particles:
         """
         pos = check.vec3_array(positions, "position")
         k = pos.shape[0]
-        vel = np.zeros((k, 3)) if velocities is None else check.vec3_array(velocities, "velocity", k)
+        vel = (np.zeros((k, 3)) if velocities is None
+               else check.vec3_array(velocities, "velocity", k))
         inv = inverse_masses(masses, k)
         rad = check.scalar_array(radii, "radius", k, low=0.0)
         damp = check.scalar_array(damping, "damping", k, low=0.0, high=1.0)

@@ -3,16 +3,25 @@
 For one contact (a, b, normal n from b to a, penetration d, restitution e):
 
 1. *Velocity.* The separating velocity is vs = (v_a - v_b)·n. If vs < 0 they are closing; the
-   target is -e·vs. The **resting-contact trick**: the part of the closing speed that this step's
-   acceleration alone produced, ((acc_a - acc_b)·n)·dt, is not bounced back, so objects resting
-   under gravity do not jitter. An impulse along n, shared by inverse mass, reaches the target.
+   target is -e·vs. A *speculative* contact (a gap g = -d > 0 inside the collision margin) is
+   treated the same way only if it would close within this step (-vs·dt > g); otherwise the pair
+   is left alone, so nothing is stopped before it arrives. The **resting-contact trick**: the
+   part of the closing speed that this step's acceleration alone produced, ((acc_a - acc_b)·n)·dt,
+   is not bounced back, so objects resting under gravity do not jitter. An impulse along n, shared by inverse mass, reaches the target.
 2. *Interpenetration.* Each particle moves along n in proportion to its inverse mass until the
    overlap is gone (a projection: positions change, velocities do not).
 
 **Worst-first** (the book's loop): each iteration resolves the single contact with the most
 negative separating velocity among those closing or penetrating, up to ``iterations`` (default
-2 × contacts), and stops early when nothing qualifies. **Sweep** resolves every contact in order,
-pass after pass (Gauss–Seidel), which is linear per pass where worst-first is quadratic.
+2 × contacts), and stops early when nothing qualifies.
+
+**Sweep** is sequential impulses (Box2D-lite's solver) on the same contacts: velocity passes over
+every contact in order (Gauss–Seidel, linear per pass where worst-first is quadratic), each
+keeping an accumulated impulse clamped at ≥ 0, then projection passes. Each contact with a key
+(sphere pairs, planes) starts from the impulse it needed in the previous step (warm starting).
+Without it a resting pile is never solved within a step's passes: measured, a 5-sphere stack
+kept closing at 0.1 m/s after 10 cold passes and needed ~70 passes per step to rest; warm
+started, it rests with one resolution per contact per step.
 
 After every single resolution, the penetration of every contact that shares a moved particle
 must be updated. We keep, per particle, the displacement it has received since the contacts were
@@ -36,8 +45,11 @@ RESOLVER_MODES = ("worst-first", "sweep")
 PENETRATION_EPSILON = 1e-9
 #: Separating velocities above -this [m/s] count as not closing (float noise).
 VELOCITY_EPSILON = 1e-9
-#: Default number of sweep passes when ``iterations`` is None.
-DEFAULT_SWEEP_PASSES = 10
+#: Most sweep passes when ``iterations`` is None; the sweep stops earlier once converged.
+DEFAULT_SWEEP_PASSES = 30
+#: The sweep has converged when no contact changed its separating velocity by more than this
+#: [m/s] in a pass (nor its penetration by more than this × dt).
+SWEEP_TOLERANCE = 1e-4
 
 
 @njit(cache=True, inline="always")
@@ -51,20 +63,21 @@ def _dot_rel(v, a, b, n, c):
 
 @njit(cache=True)
 def _resolve_one(c, pos, vel, acc, inv_mass, ca, cb, normal, pen0, rest, disp, dt, threshold):
-    """Resolve contact ``c``: its velocity, then its interpenetration. Returns True if it moved
-    or changed anything."""
+    """Resolve contact ``c``: its velocity, then its interpenetration. Returns how much it
+    changed: the larger of the separating-velocity change [m/s] and the projected depth / dt."""
     a = ca[c]
     b = cb[c]
     wa = inv_mass[a]
     wb = inv_mass[b] if b >= 0 else 0.0
     total = wa + wb
     if total <= 0.0:
-        return False  # two immovable particles: nothing we do here matters
-    changed = False
+        return 0.0  # two immovable particles: nothing we do here matters
+    changed = 0.0
 
     # --- velocity --------------------------------------------------------------------------
     vs = _dot_rel(vel, a, b, normal, c)
-    if vs < -VELOCITY_EPSILON:
+    depth = pen0[c] - _dot_rel(disp, a, b, normal, c)
+    if vs < -VELOCITY_EPSILON and depth - vs * dt > 0.0:  # closing, and touching within dt
         e = rest[c] if -vs > threshold else 0.0
         target = -e * vs
         # Resting-contact trick: do not bounce the closing speed built up by this step's
@@ -79,10 +92,9 @@ def _resolve_one(c, pos, vel, acc, inv_mass, ca, cb, normal, pen0, rest, disp, d
             vel[a, k] += normal[c, k] * impulse * wa
             if b >= 0:
                 vel[b, k] -= normal[c, k] * impulse * wb
-        changed = True
+        changed = target - vs
 
     # --- interpenetration --------------------------------------------------------------------
-    depth = pen0[c] - _dot_rel(disp, a, b, normal, c)
     if depth > PENETRATION_EPSILON:
         share = depth / total
         for k in range(3):
@@ -93,7 +105,7 @@ def _resolve_one(c, pos, vel, acc, inv_mass, ca, cb, normal, pen0, rest, disp, d
                 move_b = -normal[c, k] * share * wb
                 pos[b, k] += move_b
                 disp[b, k] += move_b
-        changed = True
+        changed = max(changed, depth / dt)
     return changed
 
 
@@ -109,7 +121,8 @@ def _worst_first(pos, vel, acc, inv_mass, ca, cb, normal, pen0, rest, disp, dt, 
             vs = _dot_rel(vel, ca[c], cb[c], normal, c)
             if vs < worst_vs:
                 depth = pen0[c] - _dot_rel(disp, ca[c], cb[c], normal, c)
-                if vs < -VELOCITY_EPSILON or depth > PENETRATION_EPSILON:
+                if ((vs < -VELOCITY_EPSILON and depth - vs * dt > 0.0)
+                        or depth > PENETRATION_EPSILON):
                     worst_vs = vs
                     worst = c
         if worst < 0:
@@ -121,17 +134,103 @@ def _worst_first(pos, vel, acc, inv_mass, ca, cb, normal, pen0, rest, disp, dt, 
 
 
 @njit(cache=True)
-def _sweep(pos, vel, acc, inv_mass, ca, cb, normal, pen0, rest, disp, dt, threshold, passes):
+def _sweep_targets(vel, acc, ca, cb, normal, pen0, rest, dt, threshold, target):
+    """Each contact's lowest allowed separating velocity [m/s] for this step."""
+    for c in range(ca.shape[0]):
+        vs = _dot_rel(vel, ca[c], cb[c], normal, c)
+        depth = pen0[c]
+        if vs < -VELOCITY_EPSILON and depth - vs * dt > 0.0:
+            # A collision (touching now or within the step): bounce, with the resting trick.
+            e = rest[c] if -vs > threshold else 0.0
+            t = -e * vs
+            acc_sep = _dot_rel(acc, ca[c], cb[c], normal, c) * dt
+            if acc_sep < 0.0:
+                t += e * acc_sep
+                if t < 0.0:
+                    t = 0.0
+            target[c] = t
+        elif depth < 0.0:
+            target[c] = depth / dt  # a gap: it may close by the gap within the step, not more
+        else:
+            target[c] = 0.0  # touching: must not close
+
+
+@njit(cache=True)
+def _apply_impulse(vel, inv_mass, a, b, normal, c, impulse):
+    wa = inv_mass[a]
+    for k in range(3):
+        vel[a, k] += normal[c, k] * impulse * wa
+    if b >= 0:
+        wb = inv_mass[b]
+        for k in range(3):
+            vel[b, k] -= normal[c, k] * impulse * wb
+
+
+@njit(cache=True)
+def _sweep(pos, vel, acc, inv_mass, ca, cb, normal, pen0, rest, disp, dt, threshold, passes,
+           tolerance, impulse, target):
+    """Sequential impulses over all contacts (Gauss–Seidel), then projection passes.
+
+    ``impulse`` holds each contact's accumulated impulse [N·s], warm-started from
+    the previous step; the accumulated impulse is clamped at ≥ 0 (contacts push, never pull),
+    so a warm start that was too strong is taken back. Velocity passes stop once no contact's
+    separating velocity changes by more than ``tolerance`` [m/s]; projection passes once no
+    penetration exceeds ``tolerance·dt`` [m]. Returns the contact resolutions that changed
+    something.
+    """
     m = ca.shape[0]
+    _sweep_targets(vel, acc, ca, cb, normal, pen0, rest, dt, threshold, target)
+    for c in range(m):  # warm start
+        if impulse[c] != 0.0:
+            _apply_impulse(vel, inv_mass, ca[c], cb[c], normal, c, impulse[c])
     used = 0
     for _ in range(passes):
-        any_change = False
+        largest = 0.0
         for c in range(m):
-            if _resolve_one(c, pos, vel, acc, inv_mass, ca, cb, normal, pen0, rest, disp, dt,
-                            threshold):
+            a = ca[c]
+            b = cb[c]
+            total = inv_mass[a] + (inv_mass[b] if b >= 0 else 0.0)
+            if total <= 0.0:
+                continue
+            vs = _dot_rel(vel, a, b, normal, c)
+            accumulated = impulse[c] + (target[c] - vs) / total
+            if accumulated < 0.0:
+                accumulated = 0.0
+            step = accumulated - impulse[c]
+            if step != 0.0:
+                _apply_impulse(vel, inv_mass, a, b, normal, c, step)
+                impulse[c] = accumulated
+                change = abs(step) * total
+                if change > largest:
+                    largest = change
                 used += 1
-                any_change = True
-        if not any_change:
+        if largest <= tolerance:
+            break
+    for _ in range(passes):
+        largest = 0.0
+        for c in range(m):
+            a = ca[c]
+            b = cb[c]
+            depth = pen0[c] - _dot_rel(disp, a, b, normal, c)
+            if depth <= PENETRATION_EPSILON:
+                continue
+            wa = inv_mass[a]
+            wb = inv_mass[b] if b >= 0 else 0.0
+            total = wa + wb
+            if total <= 0.0:
+                continue
+            share = depth / total
+            for k in range(3):
+                move_a = normal[c, k] * share * wa
+                pos[a, k] += move_a
+                disp[a, k] += move_a
+                if b >= 0:
+                    move_b = -normal[c, k] * share * wb
+                    pos[b, k] += move_b
+                    disp[b, k] += move_b
+            if depth > largest:
+                largest = depth
+        if largest <= tolerance * dt:
             break
     return used
 
@@ -142,22 +241,39 @@ def _current_penetration(ca, cb, normal, pen0, disp, out):
         out[c] = pen0[c] - _dot_rel(disp, ca[c], cb[c], normal, c)
 
 
+def _warm_impulses(contacts: ContactBuffer, keys: np.ndarray) -> np.ndarray:
+    """The impulses the same contacts (same keys) needed last step, else 0; shape (M,)."""
+    impulse = np.zeros(keys.shape[0])
+    warm = getattr(contacts, "_warm", None)
+    if warm is None or warm[0].size == 0:
+        return impulse
+    old_keys, old_impulse = warm
+    at = np.minimum(np.searchsorted(old_keys, keys), old_keys.size - 1)
+    found = (old_keys[at] == keys) & (keys >= 0)
+    impulse[found] = old_impulse[at[found]]
+    return impulse
+
+
 def resolve_contacts(particles: Particles, contacts: ContactBuffer, dt: float, *,
                      mode: str = "worst-first", iterations: int | None = None,
-                     restitution_threshold: float = 0.0) -> int:
+                     restitution_threshold: float = 0.0, warm_start: bool = True) -> int:
     """Resolve ``contacts`` in place (velocities and positions of ``particles``).
 
     Args:
         mode: "worst-first" or "sweep".
-        iterations: Worst-first: single-contact resolutions (None: 2 × contacts). Sweep: passes
-            over all contacts (None: 10, ending early once a pass changes nothing).
+        iterations: Worst-first: single-contact resolutions (None: 2 × contacts). Sweep: most
+            passes over all contacts (None: 30); it ends early once a pass changes no
+            separating velocity by more than ``SWEEP_TOLERANCE``.
         restitution_threshold: Closing speeds below this [m/s] get restitution 0.
+        warm_start: Sweep only: start each keyed contact from the impulse it needed in the
+            previous call on the same ``contacts`` buffer.
 
     Returns the number of single-contact resolutions performed. Afterwards
     ``contacts.penetration`` holds each contact's remaining penetration.
     """
     m = contacts.count
     if m == 0:
+        contacts._warm = None
         return 0
     p = particles
     disp = np.zeros((p.count, 3))
@@ -166,9 +282,16 @@ def resolve_contacts(particles: Particles, contacts: ContactBuffer, dt: float, *
             contacts.normal, pen0, contacts.restitution, disp, float(dt),
             float(restitution_threshold))
     if mode == "worst-first":
+        contacts._warm = None  # the book's resolver keeps no impulses between steps
         used = _worst_first(*args, 2 * m if iterations is None else int(iterations))
     elif mode == "sweep":
-        used = _sweep(*args, DEFAULT_SWEEP_PASSES if iterations is None else int(iterations))
+        keys = contacts.key
+        impulse = _warm_impulses(contacts, keys) if warm_start else np.zeros(m)
+        used = _sweep(*args, DEFAULT_SWEEP_PASSES if iterations is None else int(iterations),
+                      SWEEP_TOLERANCE, impulse, np.empty(m))
+        keep = keys >= 0
+        order = np.argsort(keys[keep])
+        contacts._warm = (keys[keep][order], impulse[keep][order])
     else:
         raise ValueError(f"mode must be 'worst-first' or 'sweep', got {mode!r}")
     _current_penetration(contacts.a, contacts.b, contacts.normal, pen0, disp, contacts.penetration)

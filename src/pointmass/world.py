@@ -74,8 +74,10 @@ class World:
     Args:
         gravity: World-wide gravitational acceleration [m/s²] applied to every movable particle.
         iterations: Resolver budget per substep; None means 2 × contacts (the book's choice)
-            for worst-first, and 8 passes for sweep.
-        resolver: "auto" (worst-first for few contacts, sweep for many), "worst-first" or "sweep".
+            for worst-first, and at most 30 passes for sweep (it stops once converged).
+        resolver: "auto", "worst-first" or "sweep". "auto" uses the book's worst-first for a
+            few link contacts (cables, rods), and the warm-started sweep when there are more than
+            ``sweep_threshold`` contacts or any collision contact (stacks need the warm start).
         sweep_threshold: With "auto", the contact count above which sweep mode is used.
         restitution_threshold: Closing speeds below this [m/s] do not bounce (restitution 0), so
             piles come to rest; 0 turns it off.
@@ -233,7 +235,10 @@ class World:
         # Resolve them: velocities (restitution, resting contacts), then interpenetration.
         mode = self._resolver
         if mode == "auto":
-            mode = "sweep" if self.contacts.count > self.sweep_threshold else "worst-first"
+            # The book's worst-first suits a few link contacts; collisions (keyed contacts) need
+            # the sweep's warm start to rest in stacks, and many contacts its linear cost.
+            many = self.contacts.count > self.sweep_threshold
+            mode = "sweep" if many or bool((self.contacts.key >= 0).any()) else "worst-first"
         used = resolve_contacts(p, self.contacts, dt, mode=mode, iterations=self._iterations,
                                 restitution_threshold=self._restitution_threshold)
         return used, mode
