@@ -68,11 +68,15 @@ class Renderer:
             "shadow_map": ctx.vertex_array(prog["shadow_map"], [(buf, "4f 16x", "in_sphere")]),
         })
         self._shadows = ShadowMap(ctx, prog["shadow_map"])
-        self._lines = Instances(ctx, gather.LINE_FLOATS, lambda buf: {
-            "lines": ctx.vertex_array(prog["lines"], [
+        def line_vaos(buf):
+            return {"lines": ctx.vertex_array(prog["lines"], [
                 (self._line_quad, "2f", "in_corner"),
-                (buf, "3f 3f 4f 2f/i", "in_start", "in_end", "in_color", "in_style")]),
-        })
+                (buf, "3f 3f 4f 2f/i", "in_start", "in_end", "in_color", "in_style")])}
+
+        self._lines = Instances(ctx, gather.LINE_FLOATS, line_vaos)
+        # Contacts and caller lines (a mouse spring) are drawn on top of everything: they
+        # start inside the spheres they belong to.
+        self._overlay = Instances(ctx, gather.LINE_FLOATS, line_vaos, capacity=64)
         self.fbo: moderngl.Framebuffer | None = None
         self.color_texture: moderngl.Texture | None = None
         self._depth = None
@@ -150,7 +154,12 @@ class Renderer:
         width_scale = max(1.0, h / 720.0)
 
         n_spheres = self._upload_spheres(scene)
-        n_lines = self._upload_lines(scene, show_contacts, extra_lines, width_scale)
+        n_lines = self._upload_lines(scene, width_scale)
+        overlay = []
+        if show_contacts:
+            overlay += gather.contact_lines(scene, drawn_radii(scene), width_scale)
+        overlay += gather.extra_line_rows(extra_lines, width_scale)
+        n_overlay = self._overlay.put(np.concatenate(overlay)) if overlay else 0
         if scene.show_ground:
             n = scene.world.particles.count           # anchors cast no shadow
             self._shadows.update(scene, self._spheres.host[:n], self._spheres.vaos["shadow_map"],
@@ -198,14 +207,18 @@ class Renderer:
             self._vaos["shadow_overlay"].render(moderngl.TRIANGLE_STRIP, vertices=4)
             target.depth_mask = True
         ctx.enable(moderngl.BLEND)
+        ln = self.programs["lines"]
+        ln["u_view_proj"].write(vp.tobytes())
+        ln["u_viewport"].value = (float(w), float(h))
         if n_lines:
-            ln = self.programs["lines"]
-            ln["u_view_proj"].write(vp.tobytes())
-            ln["u_viewport"].value = (float(w), float(h))
             self._lines.vaos["lines"].render(moderngl.TRIANGLE_STRIP, vertices=4,
                                              instances=n_lines)
         target.depth_mask = False
         self._draw_meshes(scene, vp, light_world, translucent=True)
+        if n_overlay:
+            ctx.disable(moderngl.DEPTH_TEST)
+            self._overlay.vaos["lines"].render(moderngl.TRIANGLE_STRIP, vertices=4,
+                                               instances=n_overlay)
         target.depth_mask = True
         ctx.disable(moderngl.BLEND | moderngl.DEPTH_TEST | moderngl.PROGRAM_POINT_SIZE)
 
@@ -240,16 +253,12 @@ class Renderer:
         self._spheres.upload(rows)
         return rows
 
-    def _upload_lines(self, scene: Scene, show_contacts: bool, extra_lines,
-                      width_scale: float) -> int:
+    def _upload_lines(self, scene: Scene, width_scale: float) -> int:
         parts: list[np.ndarray] = []
         if scene.show_links:
             parts += gather.link_lines(scene, width_scale)
         if scene.trails:
             parts += gather.trail_lines(scene, scene.particle_colors(), width_scale)
-        if show_contacts:
-            parts += gather.contact_lines(scene, drawn_radii(scene), width_scale)
-        parts += gather.extra_line_rows(extra_lines, width_scale)
         for box in scene.boxes:
             start, end = geometry.box_edges(box.center, box.half_size, box.rotation)
             rgb = np.asarray(box.color) * (1.0 if box.wireframe else 0.45)
@@ -308,6 +317,7 @@ class Renderer:
         self._spheres.release()
         self._shadows.release()
         self._lines.release()
+        self._overlay.release()
         for vao in self._vaos.values():
             vao.release()
         for buf in (self._quad, self._line_quad, self._cube, self._plane):
