@@ -10,6 +10,8 @@ One object holds many links (index arrays), like the springs.
 
 from __future__ import annotations
 
+import itertools
+
 import numpy as np
 
 from . import _validate as check
@@ -19,6 +21,13 @@ from .particles import Particles
 #: Rods within this fraction of their length count as exact (Cyclone compares floats with ==,
 #: so it makes a contact almost every step).
 ROD_TOLERANCE = 1e-9
+
+#: Contact keys (see ``ContactBuffer.key``): bit 61, the link set's serial number, the direction
+#: (bit 30: a rod pushing) and the link's position in its set; so the sweep resolver warm-starts
+#: a link that stays taut from the impulse it needed in the previous step.
+_LINK_KEY_BIT = 1 << 61
+_PUSH_BIT = 1 << 30
+_link_serials = itertools.count()
 
 
 class _Links(ContactGenerator):
@@ -34,6 +43,7 @@ class _Links(ContactGenerator):
         self.b = self._b_given.astype(np.int64)
         self._name = name
         self.lengths_target = lengths
+        self._key_base = _new_key_base()
 
     @property
     def lengths_target(self) -> np.ndarray:
@@ -64,6 +74,10 @@ class _Links(ContactGenerator):
         pa, pb = self._ends(particles)
         length = np.linalg.norm(pb - pa, axis=1)
         return pa, pb, (length - self._len) / self._len
+
+
+def _new_key_base() -> int:
+    return _LINK_KEY_BIT | ((next(_link_serials) & 0x3FFFFFFF) << 31)
 
 
 def _unit(vectors: np.ndarray, length: np.ndarray) -> np.ndarray:
@@ -104,7 +118,8 @@ class Cable(_Links):
             return
         # The normal points from b to a's target: a must move toward b.
         contacts.add(self.a[over], self._b_index()[over], _unit(d[over], length[over]),
-                     length[over] - self._len[over], self._restitution)
+                     length[over] - self._len[over], self._restitution,
+                     self._key_base | np.flatnonzero(over))
 
     def _b_index(self) -> np.ndarray:
         return self.b
@@ -137,9 +152,11 @@ class Rod(_Links):
             return
         toward_b = _unit(d[act], length[act])
         # Too long: a moves toward b; too short: a moves away from b.
-        sign = np.where(error[act] > 0, 1.0, -1.0)
+        pulling = error[act] > 0
+        sign = np.where(pulling, 1.0, -1.0)
+        keys = self._key_base | np.flatnonzero(act) | np.where(pulling, 0, _PUSH_BIT)
         contacts.add(self.a[act], self._b_index()[act], toward_b * sign[:, None],
-                     np.abs(error[act]), 0.0)
+                     np.abs(error[act]), 0.0, keys)
 
     def _b_index(self) -> np.ndarray:
         return self.b
@@ -154,6 +171,7 @@ class _Anchored:
         self.anchor = check.vec3_array(anchor, "anchor", self.a.shape[0]).copy()
         self._name = name
         self.lengths_target = lengths
+        self._key_base = _new_key_base()
 
     def validate(self, particles: Particles) -> None:
         self.a = particles.check_indices(self._a_given, "particles")

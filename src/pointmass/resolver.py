@@ -7,7 +7,8 @@ For one contact (a, b, normal n from b to a, penetration d, restitution e):
    treated the same way only if it would close within this step (-vs·dt > g); otherwise the pair
    is left alone, so nothing is stopped before it arrives. The **resting-contact trick**: the
    part of the closing speed that this step's acceleration alone produced, ((acc_a - acc_b)·n)·dt,
-   is not bounced back, so objects resting under gravity do not jitter. An impulse along n, shared by inverse mass, reaches the target.
+   is not bounced back, so objects resting under gravity do not jitter. An impulse along n,
+   shared by inverse mass, reaches the target.
 2. *Interpenetration.* Each particle moves along n in proportion to its inverse mass until the
    overlap is gone (a projection: positions change, velocities do not).
 

@@ -14,6 +14,9 @@ from .forces import ForceGenerator
 from .particles import Particles
 from .resolver import RESOLVER_MODES, resolve_contacts
 
+#: Extra rounds of link (rod, cable) contacts per substep, after the main resolution.
+LINK_ROUNDS = 4
+
 
 @dataclass(frozen=True)
 class StepStats:
@@ -99,6 +102,7 @@ class World:
         self.forces: list[ForceGenerator] = []
         self.contact_generators: list[ContactGenerator] = []
         self.contacts = ContactBuffer()
+        self._link_contacts = ContactBuffer()
         self.gravity = gravity
         self.iterations = iterations
         self.resolver = resolver
@@ -241,6 +245,20 @@ class World:
             mode = "sweep" if many or bool((self.contacts.key >= 0).any()) else "worst-first"
         used = resolve_contacts(p, self.contacts, dt, mode=mode, iterations=self._iterations,
                                 restitution_threshold=self._restitution_threshold)
+
+        # Links again: a rod at its exact length makes no contact, so projecting its neighbour
+        # may have stretched it after the contacts were made. Regenerate link contacts only,
+        # for a few rounds, until every link holds (collisions are not regenerated: costly).
+        links = [g for g in self.contact_generators if g.kind in ("rod", "cable")]
+        for _ in range(LINK_ROUNDS if links else 0):
+            self._link_contacts.clear()
+            for generator in links:
+                generator.generate(p, self._link_contacts)
+            if self._link_contacts.count == 0:
+                break
+            used += resolve_contacts(p, self._link_contacts, dt, mode=mode,
+                                     iterations=self._iterations, warm_start=False,
+                                     restitution_threshold=self._restitution_threshold)
         return used, mode
 
     # -- measurements ---------------------------------------------------------------------------
