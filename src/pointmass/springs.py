@@ -227,31 +227,55 @@ class AnchoredBungee(AnchoredSpring):
 
 
 @njit(cache=True)
-def _fake_spring_kernel(pos, vel, force, inv_mass, idx, anchor, k, d, dt):
+def _fake_spring_kernel(pos, vel, force, inv_mass, idx, anchor, k, d, dt, expect_pos,
+                        expect_vel, exact_vel, valid):
     for s in range(idx.shape[0]):
         i = idx[s]
         w = inv_mass[i]
         if w <= 0.0:
+            valid[s] = False
             continue
+        # Semi-implicit Euler leaves the particle with the secant velocity (x1 - x0)/dt, not
+        # the oscillator's velocity at t1. If nothing else moved the particle since our last
+        # step (it is where we sent it), continue from the exact velocity we kept; otherwise
+        # (other forces, a reset) start from the particle's own velocity.
+        undisturbed = valid[s]
+        if undisturbed:
+            for c in range(3):
+                tol = 1e-9 * (1.0 + abs(expect_pos[s, c]) + abs(expect_vel[s, c]))
+                if (abs(pos[i, c] - expect_pos[s, c]) > tol
+                        or abs(vel[i, c] - expect_vel[s, c]) > tol):
+                    undisturbed = False
         # Solve x'' = -k·x - d·x' exactly over dt for x = p - anchor (k, d per unit mass),
         # then apply the constant acceleration that lands the particle on that solution.
         disc = 4.0 * k - d * d
         decay = math.exp(-0.5 * d * dt)
         for c in range(3):
             x0 = pos[i, c] - anchor[s, c]
-            v0 = vel[i, c]
+            v0 = exact_vel[s, c] if undisturbed else vel[i, c]
             if disc > 0.0:  # under-damped: Millington's formula
                 gamma = 0.5 * math.sqrt(disc)
                 coef = (0.5 * d * x0 + v0) / gamma
-                x1 = decay * (x0 * math.cos(gamma * dt) + coef * math.sin(gamma * dt))
+                cs = math.cos(gamma * dt)
+                sn = math.sin(gamma * dt)
+                x1 = decay * (x0 * cs + coef * sn)
+                v1 = -0.5 * d * x1 + decay * gamma * (coef * cs - x0 * sn)
             elif disc < 0.0:  # over-damped: hyperbolic, where Cyclone takes sqrt(<0) = NaN
                 gamma = 0.5 * math.sqrt(-disc)
                 coef = (0.5 * d * x0 + v0) / gamma
-                x1 = decay * (x0 * math.cosh(gamma * dt) + coef * math.sinh(gamma * dt))
+                ch = math.cosh(gamma * dt)
+                sh = math.sinh(gamma * dt)
+                x1 = decay * (x0 * ch + coef * sh)
+                v1 = -0.5 * d * x1 + decay * gamma * (coef * ch + x0 * sh)
             else:  # critically damped
                 x1 = decay * (x0 + (v0 + 0.5 * d * x0) * dt)
-            accel = (x1 - x0) / (dt * dt) - v0 / dt
+                v1 = -0.5 * d * x1 + decay * (v0 + 0.5 * d * x0)
+            accel = (x1 - x0) / (dt * dt) - vel[i, c] / dt
             force[i, c] += accel / w
+            expect_vel[s, c] = (x1 - x0) / dt
+            expect_pos[s, c] = anchor[s, c] + x1
+            exact_vel[s, c] = v1
+        valid[s] = True
 
 
 class FakeSpring(ForceGenerator):
@@ -260,7 +284,9 @@ class FakeSpring(ForceGenerator):
 
     ``spring_constant`` and ``damping`` are per unit mass (as in the book): the particle follows
     x'' = -k·x - d·x' relative to the anchor. Under-, critically and over-damped springs are all
-    handled (Cyclone produces NaN when d² > 4k).
+    handled (Cyclone produces NaN when d² > 4k). While nothing else acts on the particle it stays
+    on the exact solution (the generator keeps the oscillator's velocity, which the integrator's
+    secant velocity is not); other forces make it restart from the particle's velocity.
 
     Args:
         particles: Particle indices (an int or an array of K).
@@ -277,6 +303,11 @@ class FakeSpring(ForceGenerator):
         self.anchor = check.vec3_array(anchor, "anchor", count).copy()
         self.spring_constant = check.scalar(spring_constant, "spring_constant", low=0.0)
         self.damping = check.scalar(damping, "damping", low=0.0)
+        # Where each particle should be after the step, and its exact oscillator velocity.
+        self._expect_pos = np.zeros((count, 3))
+        self._expect_vel = np.zeros((count, 3))
+        self._exact_vel = np.zeros((count, 3))
+        self._valid = np.zeros(count, np.bool_)
 
     def validate(self, particles: Particles) -> None:
         self._sel.validate(particles)
@@ -284,7 +315,8 @@ class FakeSpring(ForceGenerator):
     def apply(self, particles: Particles, dt: float) -> None:
         _fake_spring_kernel(particles.position, particles.velocity, particles.force,
                             particles.inv_mass, self._sel.indices(particles), self.anchor,
-                            self.spring_constant, self.damping, dt)
+                            self.spring_constant, self.damping, dt, self._expect_pos,
+                            self._expect_vel, self._exact_vel, self._valid)
 
     def segments(self, particles: Particles):
         p = particles.position[self._sel.indices(particles)]
