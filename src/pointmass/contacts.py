@@ -33,6 +33,7 @@ class ContactBuffer:
 
     def __init__(self, capacity: int = 64) -> None:
         self.count = 0
+        self._warm: tuple[np.ndarray, np.ndarray] | None = None  # (sorted keys, impulses)
         self._alloc(max(int(capacity), 1))
 
     def _alloc(self, capacity: int) -> None:
@@ -61,6 +62,11 @@ class ContactBuffer:
 
     def clear(self) -> None:
         self.count = 0
+
+    def clear_history(self) -> None:
+        """Forget the impulses kept for warm starting (after restoring a particle snapshot, so a
+        replay is bit-identical to the first run)."""
+        self._warm = None
 
     def __len__(self) -> int:
         return self.count

@@ -245,7 +245,7 @@ def _current_penetration(ca, cb, normal, pen0, disp, out):
 def _warm_impulses(contacts: ContactBuffer, keys: np.ndarray) -> np.ndarray:
     """The impulses the same contacts (same keys) needed last step, else 0; shape (M,)."""
     impulse = np.zeros(keys.shape[0])
-    warm = getattr(contacts, "_warm", None)
+    warm = contacts._warm
     if warm is None or warm[0].size == 0:
         return impulse
     old_keys, old_impulse = warm
@@ -274,7 +274,7 @@ def resolve_contacts(particles: Particles, contacts: ContactBuffer, dt: float, *
     """
     m = contacts.count
     if m == 0:
-        contacts._warm = None
+        contacts.clear_history()
         return 0
     p = particles
     disp = np.zeros((p.count, 3))
@@ -283,7 +283,7 @@ def resolve_contacts(particles: Particles, contacts: ContactBuffer, dt: float, *
             contacts.normal, pen0, contacts.restitution, disp, float(dt),
             float(restitution_threshold))
     if mode == "worst-first":
-        contacts._warm = None  # the book's resolver keeps no impulses between steps
+        contacts.clear_history()  # the book's resolver keeps no impulses between steps
         used = _worst_first(*args, 2 * m if iterations is None else int(iterations))
     elif mode == "sweep":
         keys = contacts.key

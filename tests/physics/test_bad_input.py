@@ -1,0 +1,141 @@
+"""Bad input fails at once, with an error naming the parameter and its range; never a NaN later."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+import pointmass as pm
+
+DT = 1.0 / 60.0
+
+
+@pytest.mark.parametrize("mass", [0.0, -1.0, math.nan, -math.inf])
+def test_bad_mass_is_refused(mass):
+    """Refuse a mass ≤ 0 or NaN, naming mass and the range (0, inf]."""
+    world = pm.World()
+    with pytest.raises(ValueError, match=r"mass must be in \(0, inf\]"):
+        world.add_particle(mass=mass)
+    i = world.add_particle()
+    with pytest.raises(ValueError, match=r"mass must be in \(0, inf\]"):
+        world.particles[i].mass = mass
+    assert world.particles.count == 1
+
+
+@pytest.mark.parametrize("bad", [math.nan, math.inf, -math.inf])
+def test_non_finite_position_or_velocity_is_refused(bad):
+    """Refuse non-finite positions and velocities, naming which."""
+    world = pm.World()
+    with pytest.raises(ValueError, match="position must be finite"):
+        world.add_particle(position=(0, bad, 0))
+    with pytest.raises(ValueError, match="velocity must be finite"):
+        world.add_particle(velocity=(bad, 0, 0))
+    with pytest.raises(ValueError, match="position must be finite"):
+        world.add_particles([(0, 0, 0), (1, bad, 0)])
+    i = world.add_particle()
+    with pytest.raises(ValueError, match="velocity must be finite"):
+        world.particles[i].velocity = (0, 0, bad)
+    assert np.isfinite(world.particles.position).all()
+
+
+def test_negative_radius_is_refused():
+    """Refuse a negative radius, naming radius and [0, inf]."""
+    world = pm.World()
+    with pytest.raises(ValueError, match=r"radius must be in \[0, inf\]"):
+        world.add_particle(radius=-0.1)
+    i = world.add_particle(radius=0.1)
+    with pytest.raises(ValueError, match=r"radius must be in \[0, inf\]"):
+        world.particles[i].radius = -1.0
+
+
+def test_negative_rest_length_is_refused():
+    """Refuse negative spring rest lengths and non-positive link lengths, naming them."""
+    with pytest.raises(ValueError, match=r"rest_length must be in \[0, inf\]"):
+        pm.Spring(0, 1, spring_constant=1.0, rest_length=-1.0)
+    with pytest.raises(ValueError, match=r"rest_length must be in \[0, inf\]"):
+        pm.AnchoredSpring(0, (0, 0, 0), rest_length=-2.0)
+    with pytest.raises(ValueError, match=r"spring_constant must be in \[0, inf\]"):
+        pm.Spring(0, 1, spring_constant=-5.0)
+    with pytest.raises(ValueError, match=r"max_length must be in \(0, inf\]"):
+        pm.Cable(0, 1, max_length=0.0)
+    with pytest.raises(ValueError, match=r"length must be in \(0, inf\]"):
+        pm.Rod(0, 1, length=-1.0)
+
+
+def test_index_that_is_not_a_particle_is_refused():
+    """Refuse world.add(Spring(0, 99)) when there is no particle 99, naming b and the range."""
+    world = pm.World()
+    world.add_particles(np.zeros((2, 3)))
+    with pytest.raises(IndexError, match=r"b: 99 is not a particle; indices must be in \[0, 1\]"):
+        world.add(pm.Spring(0, 99))
+    with pytest.raises(IndexError, match="a: -1 is not a particle"):
+        world.add(pm.Rod(-1, 1, length=1.0))
+    with pytest.raises(IndexError, match="particles: 5 is not a particle"):
+        world.add(pm.Gravity(particles=[0, 5]))
+    with pytest.raises(IndexError, match="particle: 7 is not a particle"):
+        world.particles[7]
+    with pytest.raises(ValueError, match="joins particle 0 to itself"):
+        world.add(pm.Spring(0, 0))
+    assert world.forces == [] and world.contact_generators == []
+
+
+@pytest.mark.parametrize("dt", [0.0, -DT, math.nan, math.inf])
+def test_bad_time_step_is_refused(dt):
+    """Refuse dt ≤ 0 or non-finite, naming dt, and leave the world untouched."""
+    world = pm.World()
+    world.add_particle(position=(0, 1, 0))
+    with pytest.raises(ValueError, match="dt must be a finite number of seconds > 0"):
+        world.step(dt)
+    assert world.time == 0.0 and world.particles.position[0, 1] == 1.0
+
+
+@pytest.mark.parametrize("e", [-0.1, 1.5, math.nan])
+def test_restitution_outside_zero_one_is_refused(e):
+    """Refuse restitution outside [0, 1] everywhere it is accepted."""
+    for make in (lambda: pm.Ground(restitution=e), lambda: pm.SphereCollisions(restitution=e),
+                 lambda: pm.Box(restitution=e), lambda: pm.Cable(0, 1, 1.0, restitution=e),
+                 lambda: pm.Plane((0, 1, 0), restitution=e)):
+        with pytest.raises(ValueError, match=r"restitution must be in \[0, 1\]"):
+            make()
+    ground = pm.Ground()
+    with pytest.raises(ValueError, match=r"restitution must be in \[0, 1\]"):
+        ground.restitution = e
+
+
+def test_other_settings_are_checked():
+    """Refuse bad damping, drag, margin, world settings, each naming its parameter."""
+    with pytest.raises(ValueError, match=r"damping must be in \[0, 1\]"):
+        pm.World().add_particle(damping=1.5)
+    with pytest.raises(ValueError, match=r"k1 must be in \[0, inf\]"):
+        pm.Drag(-1.0, 0.1)
+    with pytest.raises(ValueError, match=r"margin must be in \[0, inf\]"):
+        pm.SphereCollisions(margin=-0.1)
+    with pytest.raises(ValueError, match="substeps must be an int in"):
+        pm.World(substeps=0)
+    with pytest.raises(ValueError, match="resolver must be"):
+        pm.World(resolver="fastest")
+    with pytest.raises(ValueError, match="gravity must be finite"):
+        pm.World(gravity=(0, math.nan, 0))
+
+
+def test_blow_up_raises_floating_point_error_naming_the_particle():
+    """Raise FloatingPointError from step, naming the particle, instead of a silent NaN."""
+    world = pm.World(gravity=(0, 0, 0))
+    world.add_particle(position=(0, 0, 0), mass=math.inf)
+    loose = world.add_particle(position=(0.5, 0, 0), mass=1e-3)
+    world.add(pm.Spring(0, loose, spring_constant=1e200, rest_length=1.0))
+    with pytest.raises(FloatingPointError, match=f"particle {loose} became non-finite"):
+        with np.errstate(all="ignore"):
+            for _ in range(100):
+                world.step(DT)
+
+
+def test_custom_force_returning_nan_is_refused():
+    """Refuse a CustomForce result that is not a finite 3-vector, naming the particle."""
+    world = pm.World()
+    world.add_particle()
+    world.add(pm.CustomForce(lambda p: (0.0, math.nan, 0.0)))
+    with pytest.raises(ValueError, match="for particle 0; it must return a finite 3-vector"):
+        world.step(DT)
