@@ -113,18 +113,23 @@ def _resolve_one(c, pos, vel, acc, inv_mass, ca, cb, normal, pen0, rest, disp, d
 @njit(cache=True)
 def _worst_first(pos, vel, acc, inv_mass, ca, cb, normal, pen0, rest, disp, dt, threshold,
                  iterations):
+    """The book's loop: resolve the worst contact, one at a time. "Worst" is the most negative
+    separating velocity, as in the book, less depth/dt for a penetrating contact: a deep
+    contact that is not closing still needs fixing, and the book's order (closing speed alone)
+    leaves it until every closing contact is done, which a pile never reaches."""
     m = ca.shape[0]
     used = 0
     while used < iterations:
         worst = -1
-        worst_vs = np.inf
+        worst_key = np.inf
         for c in range(m):
             vs = _dot_rel(vel, ca[c], cb[c], normal, c)
-            if vs < worst_vs:
-                depth = pen0[c] - _dot_rel(disp, ca[c], cb[c], normal, c)
-                if ((vs < -VELOCITY_EPSILON and depth - vs * dt > 0.0)
-                        or depth > PENETRATION_EPSILON):
-                    worst_vs = vs
+            depth = pen0[c] - _dot_rel(disp, ca[c], cb[c], normal, c)
+            closing = vs < -VELOCITY_EPSILON and depth - vs * dt > 0.0
+            if closing or depth > PENETRATION_EPSILON:
+                key = vs - max(depth, 0.0) / dt
+                if key < worst_key:
+                    worst_key = key
                     worst = c
         if worst < 0:
             break  # nothing closing or penetrating: done early

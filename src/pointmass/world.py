@@ -78,9 +78,10 @@ class World:
         gravity: World-wide gravitational acceleration [m/s²] applied to every movable particle.
         iterations: Resolver budget per substep; None means 2 × contacts (the book's choice)
             for worst-first, and at most 30 passes for sweep (it stops once converged).
-        resolver: "auto", "worst-first" or "sweep". "auto" uses the book's worst-first for a
-            few link contacts (cables, rods), and the warm-started sweep when there are more than
-            ``sweep_threshold`` contacts or any collision contact (stacks need the warm start).
+        resolver: "auto", "worst-first" or "sweep". "auto" uses the warm-started sweep when
+            there are more than ``sweep_threshold`` contacts or any keyed contact (collisions,
+            links: stacks need the warm start to rest), else the book's worst-first (a few
+            contacts from custom generators).
         sweep_threshold: With "auto", the contact count above which sweep mode is used.
         restitution_threshold: Closing speeds below this [m/s] do not bounce (restitution 0), so
             piles come to rest; 0 turns it off.
@@ -239,8 +240,9 @@ class World:
         # Resolve them: velocities (restitution, resting contacts), then interpenetration.
         mode = self._resolver
         if mode == "auto":
-            # The book's worst-first suits a few link contacts; collisions (keyed contacts) need
-            # the sweep's warm start to rest in stacks, and many contacts its linear cost.
+            # Keyed contacts (collisions, links) need the sweep's warm start (stacks rest, rod
+            # chains hold); many contacts need its linear cost. The book's worst-first is left
+            # for a few unkeyed contacts from custom generators.
             many = self.contacts.count > self.sweep_threshold
             mode = "sweep" if many or bool((self.contacts.key >= 0).any()) else "worst-first"
         used = resolve_contacts(p, self.contacts, dt, mode=mode, iterations=self._iterations,
