@@ -14,7 +14,7 @@ from __future__ import annotations
 from collections.abc import Callable
 
 import numpy as np
-from numba import njit
+from numba import njit, prange
 
 from . import _validate as check
 from .particles import Particle, Particles
@@ -118,6 +118,19 @@ def _drag_kernel(force, velocity, idx, k1, k2):
             force[i, 2] -= c * vz
 
 
+@njit(cache=True, parallel=True)
+def _drag_all_kernel(force, velocity, k1, k2):
+    """``_drag_kernel`` on every particle: each row once, so the rows can run on all cores."""
+    for i in prange(velocity.shape[0]):
+        vx, vy, vz = velocity[i, 0], velocity[i, 1], velocity[i, 2]
+        speed = np.sqrt(vx * vx + vy * vy + vz * vz)
+        if speed > 0.0:
+            c = k1 + k2 * speed
+            force[i, 0] -= c * vx
+            force[i, 1] -= c * vy
+            force[i, 2] -= c * vz
+
+
 class Drag(ForceGenerator):
     """The cookbook's DragGenerator: |F| = k1·|v| + k2·|v|², opposite to the velocity.
 
@@ -141,8 +154,11 @@ class Drag(ForceGenerator):
         self._sel.validate(particles)
 
     def apply(self, particles: Particles, dt: float) -> None:
-        _drag_kernel(particles.force, particles.velocity, self._sel.indices(particles),
-                     self._k1, self._k2)
+        if self._sel._given is None:  # every particle once: the parallel kernel is safe
+            _drag_all_kernel(particles.force, particles.velocity, self._k1, self._k2)
+        else:  # given indices may repeat: one thread
+            _drag_kernel(particles.force, particles.velocity, self._sel.indices(particles),
+                         self._k1, self._k2)
 
 
 @njit(cache=True)

@@ -6,7 +6,7 @@ import math
 from dataclasses import dataclass
 
 import numpy as np
-from numba import njit
+from numba import njit, prange
 
 from . import _validate as check
 from .contacts import ContactBuffer, ContactGenerator
@@ -37,15 +37,17 @@ class StepStats:
     mode: str
 
 
-@njit(cache=True)
+@njit(cache=True, parallel=True)
 def _integrate(pos, vel, force, acc, inv_mass, damping, g, dt):
     """Semi-implicit Euler in the cookbook's order: v += a·dt, v *= damping^dt, p += v·dt.
 
     Immovable particles (inverse mass 0) get no acceleration but keep moving with whatever
     velocity they were given (kinematic). Returns the first particle that is not finite, or -1.
+    Particles are independent, so the loop runs on all cores (same result whatever the split).
     """
-    bad = -1
-    for i in range(pos.shape[0]):
+    n = pos.shape[0]
+    bad = n
+    for i in prange(n):
         w = inv_mass[i]
         if w > 0.0:
             for c in range(3):
@@ -64,11 +66,11 @@ def _integrate(pos, vel, force, acc, inv_mass, damping, g, dt):
             acc[i, 2] = 0.0
         for c in range(3):
             pos[i, c] += vel[i, c] * dt
-        if bad < 0 and not (math.isfinite(pos[i, 0]) and math.isfinite(pos[i, 1])
-                            and math.isfinite(pos[i, 2]) and math.isfinite(vel[i, 0])
-                            and math.isfinite(vel[i, 1]) and math.isfinite(vel[i, 2])):
-            bad = i
-    return bad
+        if not (math.isfinite(pos[i, 0]) and math.isfinite(pos[i, 1])
+                and math.isfinite(pos[i, 2]) and math.isfinite(vel[i, 0])
+                and math.isfinite(vel[i, 1]) and math.isfinite(vel[i, 2])):
+            bad = min(bad, i)
+    return bad if bad < n else -1
 
 
 class World:
