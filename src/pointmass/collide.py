@@ -41,6 +41,37 @@ def _margin_value(value) -> float | None:
     return None if value is None else check.scalar(value, "margin", low=0.0)
 
 
+@njit(cache=True)
+def _plane_contacts(pos, radius, inv_mass, idx, normal, offset, margin, margin_fraction,
+                    restitution, key_base, out_a, out_b, out_n, out_pen, out_rest, out_key,
+                    start):
+    """Contacts of the movable particles ``idx`` whose gap to the plane is below the margin
+    (``margin`` [m], or when negative ``margin_fraction`` × radius). Written from ``start``;
+    returns the count written or needed, like ``_sphere_pairs``."""
+    count = start
+    capacity = out_a.shape[0]
+    for k in range(idx.shape[0]):
+        i = idx[k]
+        if inv_mass[i] <= 0.0:
+            continue
+        gap = (pos[i, 0] * normal[0] + pos[i, 1] * normal[1] + pos[i, 2] * normal[2]
+               - offset - radius[i])
+        reach = margin if margin >= 0.0 else margin_fraction * radius[i]
+        if gap >= reach:
+            continue
+        if count < capacity:
+            out_a[count] = i
+            out_b[count] = -1
+            out_n[count, 0] = normal[0]
+            out_n[count, 1] = normal[1]
+            out_n[count, 2] = normal[2]
+            out_pen[count] = -gap
+            out_rest[count] = restitution
+            out_key[count] = key_base | i
+        count += 1
+    return count
+
+
 class Plane(ContactGenerator):
     """A one-sided plane n·x = offset; particles keep their surface (centre minus radius) on the
     side the unit normal ``n`` points to. Points (radius 0) collide with it too.
@@ -75,13 +106,17 @@ class Plane(ContactGenerator):
 
     def generate(self, particles: Particles, contacts: ContactBuffer) -> None:
         idx = self._sel.indices(particles)
-        radius = particles.radius[idx]
-        gap = particles.position[idx] @ self.normal - self.offset - radius
-        margin = DEFAULT_MARGIN_FRACTION * radius if self.margin is None else self.margin
-        keep = (gap < margin) & (particles.inv_mass[idx] > 0)
-        touching = idx[keep]
-        contacts.add(touching, -1, self.normal, -gap[keep], self._restitution,
-                     self._key_base | touching)
+        margin = -1.0 if self.margin is None else self.margin
+        for _ in range(2):  # the first try reports how much room it needs if short
+            a, b, n, pen, rest = contacts.raw()
+            total = _plane_contacts(particles.position, particles.radius, particles.inv_mass,
+                                    idx, self.normal, self.offset, margin,
+                                    DEFAULT_MARGIN_FRACTION, self._restitution, self._key_base,
+                                    a, b, n, pen, rest, contacts.raw_key(), contacts.count)
+            if total <= contacts.capacity:
+                contacts.count = total
+                return
+            contacts.reserve(total - contacts.count)
 
 
 class Ground(Plane):
@@ -150,6 +185,17 @@ def _cell_hash(ix, iy, iz, mask):
     return h & mask
 
 
+@njit(cache=True, inline="always")
+def _swap_contacts(out_a, out_b, out_n, out_pen, out_rest, out_key, u, v):
+    out_a[u], out_a[v] = out_a[v], out_a[u]
+    out_b[u], out_b[v] = out_b[v], out_b[u]
+    for c in range(3):
+        out_n[u, c], out_n[v, c] = out_n[v, c], out_n[u, c]
+    out_pen[u], out_pen[v] = out_pen[v], out_pen[u]
+    out_rest[u], out_rest[v] = out_rest[v], out_rest[u]
+    out_key[u], out_key[v] = out_key[v], out_key[u]
+
+
 @njit(cache=True)
 def _sphere_pairs(pos, radius, inv_mass, idx, cell_size, restitution, margin, margin_fraction,
                   out_a, out_b, out_n, out_pen, out_rest, out_key, start):
@@ -188,17 +234,24 @@ def _sphere_pairs(pos, radius, inv_mass, idx, cell_size, restitution, margin, ma
     capacity = out_a.shape[0]
     for k in range(n):
         i = idx[k]
+        first = count
+        # Own cell (later particles only) and the 13 "forward" neighbour cells: each pair is
+        # met exactly once, from the particle in the lower cell (or the lower index).
         for dx in range(-1, 2):
             for dy in range(-1, 2):
                 for dz in range(-1, 2):
+                    forward = dx > 0 or (dx == 0 and (dy > 0 or (dy == 0 and dz > 0)))
+                    own = dx == 0 and dy == 0 and dz == 0
+                    if not (forward or own):
+                        continue
                     cx = cells[k, 0] + dx
                     cy = cells[k, 1] + dy
                     cz = cells[k, 2] + dz
                     bucket = _cell_hash(cx, cy, cz, mask)
                     for s in range(starts[bucket], starts[bucket + 1]):
                         m = order[s]
-                        if m <= k:
-                            continue  # each pair once, from its lower index
+                        if own and m <= k:
+                            continue
                         # Another cell may share the bucket: only take this cell's particles.
                         if cells[m, 0] != cx or cells[m, 1] != cy or cells[m, 2] != cz:
                             continue
@@ -230,8 +283,16 @@ def _sphere_pairs(pos, radius, inv_mass, idx, cell_size, restitution, margin, ma
                                 out_n[count, 2] = 0.0
                             out_pen[count] = reach - dist
                             out_rest[count] = restitution
-                            out_key[count] = (min(i, j) << 31) | max(i, j)
+                            out_key[count] = (i << 31) | j
                         count += 1
+        # Sort this particle's few contacts by key, so the keys come out sorted (the warm
+        # start then matches them against the previous step's in linear time).
+        last = min(count, capacity)
+        for u in range(first + 1, last):
+            v = u
+            while v > first and out_key[v - 1] > out_key[v]:
+                _swap_contacts(out_a, out_b, out_n, out_pen, out_rest, out_key, v - 1, v)
+                v -= 1
     return count
 
 

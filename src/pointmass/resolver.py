@@ -140,16 +140,24 @@ def _worst_first(pos, vel, acc, inv_mass, ca, cb, normal, pen0, rest, disp, dt, 
 
 
 @njit(cache=True)
-def _sweep_targets(vel, acc, ca, cb, normal, pen0, rest, dt, threshold, target):
-    """Each contact's lowest allowed separating velocity [m/s] for this step."""
+def _sweep_setup(vel, acc, inv_mass, ca, cb, normal, pen0, rest, dt, threshold, target, wa, wb,
+                 inv_total):
+    """Per contact: the lowest allowed separating velocity [m/s] this step, and the inverse
+    masses (``wb`` = 0 for scenery; ``inv_total`` = 0 when both ends are immovable)."""
     for c in range(ca.shape[0]):
-        vs = _dot_rel(vel, ca[c], cb[c], normal, c)
+        a = ca[c]
+        b = cb[c]
+        wa[c] = inv_mass[a]
+        wb[c] = inv_mass[b] if b >= 0 else 0.0
+        total = wa[c] + wb[c]
+        inv_total[c] = 1.0 / total if total > 0.0 else 0.0
+        vs = _dot_rel(vel, a, b, normal, c)
         depth = pen0[c]
         if vs < -VELOCITY_EPSILON and depth - vs * dt > 0.0:
             # A collision (touching now or within the step): bounce, with the resting trick.
             e = rest[c] if -vs > threshold else 0.0
             t = -e * vs
-            acc_sep = _dot_rel(acc, ca[c], cb[c], normal, c) * dt
+            acc_sep = _dot_rel(acc, a, b, normal, c) * dt
             if acc_sep < 0.0:
                 t += e * acc_sep
                 if t < 0.0:
@@ -162,51 +170,59 @@ def _sweep_targets(vel, acc, ca, cb, normal, pen0, rest, dt, threshold, target):
 
 
 @njit(cache=True)
-def _apply_impulse(vel, inv_mass, a, b, normal, c, impulse):
-    wa = inv_mass[a]
-    for k in range(3):
-        vel[a, k] += normal[c, k] * impulse * wa
-    if b >= 0:
-        wb = inv_mass[b]
-        for k in range(3):
-            vel[b, k] -= normal[c, k] * impulse * wb
-
-
-@njit(cache=True)
 def _sweep(pos, vel, acc, inv_mass, ca, cb, normal, pen0, rest, disp, dt, threshold, passes,
-           tolerance, impulse, target):
+           tolerance, impulse, target, wa, wb, inv_total):
     """Sequential impulses over all contacts (Gauss–Seidel), then projection passes.
 
-    ``impulse`` holds each contact's accumulated impulse [N·s], warm-started from
-    the previous step; the accumulated impulse is clamped at ≥ 0 (contacts push, never pull),
-    so a warm start that was too strong is taken back. Velocity passes stop once no contact's
-    separating velocity changes by more than ``tolerance`` [m/s]; projection passes once no
-    penetration exceeds ``tolerance·dt`` [m]. Returns the contact resolutions that changed
-    something.
+    ``impulse`` holds each contact's accumulated impulse [N·s], warm-started from the previous
+    step; the accumulated impulse is clamped at ≥ 0 (contacts push, never pull), so a warm
+    start that was too strong is taken back. Velocity passes stop once no contact's separating
+    velocity changes by more than ``tolerance`` [m/s]; projection passes once no penetration
+    exceeds ``tolerance·dt`` [m]. Returns the contact resolutions that changed something.
     """
     m = ca.shape[0]
-    _sweep_targets(vel, acc, ca, cb, normal, pen0, rest, dt, threshold, target)
+    _sweep_setup(vel, acc, inv_mass, ca, cb, normal, pen0, rest, dt, threshold, target, wa, wb,
+                 inv_total)
     for c in range(m):  # warm start
-        if impulse[c] != 0.0:
-            _apply_impulse(vel, inv_mass, ca[c], cb[c], normal, c, impulse[c])
+        j = impulse[c]
+        if j != 0.0:
+            a = ca[c]
+            b = cb[c]
+            for k in range(3):
+                vel[a, k] += normal[c, k] * j * wa[c]
+                if b >= 0:
+                    vel[b, k] -= normal[c, k] * j * wb[c]
     used = 0
     for _ in range(passes):
         largest = 0.0
         for c in range(m):
             a = ca[c]
             b = cb[c]
-            total = inv_mass[a] + (inv_mass[b] if b >= 0 else 0.0)
-            if total <= 0.0:
-                continue
-            vs = _dot_rel(vel, a, b, normal, c)
-            accumulated = impulse[c] + (target[c] - vs) / total
+            nx = normal[c, 0]
+            ny = normal[c, 1]
+            nz = normal[c, 2]
+            if b >= 0:
+                vs = ((vel[a, 0] - vel[b, 0]) * nx + (vel[a, 1] - vel[b, 1]) * ny
+                      + (vel[a, 2] - vel[b, 2]) * nz)
+            else:
+                vs = vel[a, 0] * nx + vel[a, 1] * ny + vel[a, 2] * nz
+            old = impulse[c]
+            accumulated = old + (target[c] - vs) * inv_total[c]
             if accumulated < 0.0:
                 accumulated = 0.0
-            step = accumulated - impulse[c]
+            step = accumulated - old
             if step != 0.0:
-                _apply_impulse(vel, inv_mass, a, b, normal, c, step)
                 impulse[c] = accumulated
-                change = abs(step) * total
+                ja = step * wa[c]
+                vel[a, 0] += nx * ja
+                vel[a, 1] += ny * ja
+                vel[a, 2] += nz * ja
+                if b >= 0:
+                    jb = step * wb[c]
+                    vel[b, 0] -= nx * jb
+                    vel[b, 1] -= ny * jb
+                    vel[b, 2] -= nz * jb
+                change = abs(step) * (wa[c] + wb[c])
                 if change > largest:
                     largest = change
                 used += 1
@@ -218,20 +234,15 @@ def _sweep(pos, vel, acc, inv_mass, ca, cb, normal, pen0, rest, disp, dt, thresh
             a = ca[c]
             b = cb[c]
             depth = pen0[c] - _dot_rel(disp, a, b, normal, c)
-            if depth <= PENETRATION_EPSILON:
+            if depth <= PENETRATION_EPSILON or inv_total[c] == 0.0:
                 continue
-            wa = inv_mass[a]
-            wb = inv_mass[b] if b >= 0 else 0.0
-            total = wa + wb
-            if total <= 0.0:
-                continue
-            share = depth / total
+            share = depth * inv_total[c]
             for k in range(3):
-                move_a = normal[c, k] * share * wa
+                move_a = normal[c, k] * share * wa[c]
                 pos[a, k] += move_a
                 disp[a, k] += move_a
                 if b >= 0:
-                    move_b = -normal[c, k] * share * wb
+                    move_b = -normal[c, k] * share * wb[c]
                     pos[b, k] += move_b
                     disp[b, k] += move_b
             if depth > largest:
@@ -247,16 +258,33 @@ def _current_penetration(ca, cb, normal, pen0, disp, out):
         out[c] = pen0[c] - _dot_rel(disp, ca[c], cb[c], normal, c)
 
 
+@njit(cache=True)
+def _lookup_impulses(old_keys, old_impulse, keys, out):
+    """out[c] = the impulse kept for keys[c] (binary search in the sorted ``old_keys``), or 0."""
+    n_old = old_keys.shape[0]
+    for c in range(keys.shape[0]):
+        key = keys[c]
+        out[c] = 0.0
+        if key < 0:
+            continue
+        lo = 0
+        hi = n_old
+        while lo < hi:
+            mid = (lo + hi) >> 1
+            if old_keys[mid] < key:
+                lo = mid + 1
+            else:
+                hi = mid
+        if lo < n_old and old_keys[lo] == key:
+            out[c] = old_impulse[lo]
+
+
 def _warm_impulses(contacts: ContactBuffer, keys: np.ndarray) -> np.ndarray:
     """The impulses the same contacts (same keys) needed last step, else 0; shape (M,)."""
     impulse = np.zeros(keys.shape[0])
     warm = contacts._warm
-    if warm is None or warm[0].size == 0:
-        return impulse
-    old_keys, old_impulse = warm
-    at = np.minimum(np.searchsorted(old_keys, keys), old_keys.size - 1)
-    found = (old_keys[at] == keys) & (keys >= 0)
-    impulse[found] = old_impulse[at[found]]
+    if warm is not None and warm[0].size:
+        _lookup_impulses(warm[0], warm[1], keys, impulse)
     return impulse
 
 
@@ -294,10 +322,12 @@ def resolve_contacts(particles: Particles, contacts: ContactBuffer, dt: float, *
         keys = contacts.key
         impulse = _warm_impulses(contacts, keys) if warm_start else np.zeros(m)
         used = _sweep(*args, DEFAULT_SWEEP_PASSES if iterations is None else int(iterations),
-                      SWEEP_TOLERANCE, impulse, np.empty(m))
+                      SWEEP_TOLERANCE, impulse, np.empty(m), np.empty(m), np.empty(m),
+                      np.empty(m))
         keep = keys >= 0
-        order = np.argsort(keys[keep])
-        contacts._warm = (keys[keep][order], impulse[keep][order])
+        kept = keys[keep]
+        order = np.argsort(kept, kind="stable")  # nearly sorted already: timsort is fast
+        contacts._warm = (kept[order], impulse[keep][order])
     else:
         raise ValueError(f"mode must be 'worst-first' or 'sweep', got {mode!r}")
     _current_penetration(contacts.a, contacts.b, contacts.normal, pen0, disp, contacts.penetration)

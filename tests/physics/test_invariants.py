@@ -94,8 +94,9 @@ def test_single_resolved_contact_is_not_closing(p1, p2, v1, v2, m1, m2, e, mode)
     assert contacts.count == 1  # centres are at most √12 apart, radii sum 4: they overlap
     resolve_contacts(world.particles, contacts, DT, mode=mode, restitution_threshold=0.0)
     p, v = world.particles.position, world.particles.velocity
-    normal = contacts.normal[0]
-    separating = (v[a] - v[b]) @ normal
+    first, second = contacts.a[0], contacts.b[0]  # either order: the normal points second→first
+    assert {first, second} == {a, b}
+    separating = (v[first] - v[second]) @ contacts.normal[0]
     assert separating >= -1e-9
     # And no longer overlapping.
     assert np.linalg.norm(p[a] - p[b]) >= 4.0 - 1e-5
