@@ -1,0 +1,70 @@
+"""The interactive viewer: a pyglet window with an ImGui panel (``pointmass run``,
+``pointmass.show``).
+
+Importing this package opens no display and loads no pyglet: ``run_demo`` and ``show`` import
+the window when called, and raise ``NoDisplayError`` (naming ``pointmass record`` and
+``xvfb-run``) when there is no display to open it on.
+"""
+
+from __future__ import annotations
+
+from .errors import NoDisplayError, has_display, no_display_message
+
+__all__ = ["NoDisplayError", "open_window", "run_demo", "show"]
+
+
+def open_window(sim, *, title: str = "pointmass", paused: bool = False, size=(1280, 720),
+                output_dir=".", visible: bool = True, demo_name: str | None = None):
+    """Open a ``ViewerWindow`` on a Simulation (not yet running its loop: call ``.run()``).
+
+    Raises:
+        NoDisplayError: no display (or pyglet cannot connect to it).
+    """
+    if not has_display():
+        raise NoDisplayError(no_display_message(demo_name, "neither DISPLAY nor "
+                                                           "WAYLAND_DISPLAY is set"))
+    try:
+        import pyglet
+
+        pyglet.options.shadow_window = False      # one context: the viewer's
+        from .window import ViewerWindow
+    except Exception as exc:
+        if type(exc).__name__ == "NoSuchDisplayException":
+            raise NoDisplayError(no_display_message(demo_name, str(exc))) from None
+        raise
+    try:
+        return ViewerWindow(sim, title=title, size=size, paused=paused,
+                            output_dir=output_dir, visible=visible)
+    except Exception as exc:
+        if type(exc).__name__ in ("NoSuchDisplayException", "NoSuchConfigException"):
+            raise NoDisplayError(no_display_message(demo_name, str(exc))) from None
+        raise
+
+
+def run_demo(name: str, overrides: list[str] | None = None, paused: bool = False) -> None:
+    """Open a window on the demo ``name`` (with ``--set`` style ``overrides``) and run it
+    until the window is closed."""
+    from ..demo import Simulation, load_demo
+
+    demo = load_demo(name)
+    sim = Simulation(demo, overrides=overrides)
+    window = open_window(sim, title=f"pointmass - {demo.title}", paused=paused,
+                         demo_name=demo.name)
+    window.run()
+
+
+def show(scene_or_simulation, *, paused: bool = False, title: str | None = None) -> None:
+    """Open a window on a Scene built in a script (or a demo Simulation) and run it until the
+    window is closed. Reset (Backspace) puts a bare Scene's particles back where they started."""
+    from ..scene import Scene
+    from .scene_sim import SceneSimulation
+
+    sim = scene_or_simulation
+    if isinstance(sim, Scene):
+        sim = SceneSimulation(sim, title or "pointmass")
+    elif not hasattr(sim, "step") or not hasattr(sim, "scene"):
+        raise TypeError(f"show() takes a Scene or a Simulation, got {type(sim).__name__}")
+    if title is None:
+        demo = getattr(sim, "demo", None)
+        title = f"pointmass - {demo.title}" if demo is not None else "pointmass"
+    open_window(sim, title=title, paused=paused).run()

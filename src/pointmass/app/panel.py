@@ -1,0 +1,194 @@
+"""The ImGui panel: the demo's parameters, world settings, statistics and a live plot, plus the
+help overlay. It only *draws and reports*: changes go through its host (the window), which owns
+the simulation, so a rebuild also cancels a grab and clears the plot.
+
+The host provides: ``sim``, ``clock`` (FixedStepClock), ``stats`` (FrameStats), ``keymap``,
+``show_help``, ``recording``, ``set_param(name, value)`` and ``act(action)``.
+"""
+
+from __future__ import annotations
+
+from imgui_bundle import imgui, implot
+
+from ..params import param_specs
+from .keymap import MOUSE_HELP
+
+PANEL_WIDTH = 360
+RESOLVERS = ("auto", "worst-first", "sweep")
+_OPEN = imgui.TreeNodeFlags_.default_open
+
+
+class Panel:
+    """Draws the panel each frame; keeps the values of rebuild sliders being dragged."""
+
+    def __init__(self) -> None:
+        self._pending: dict[str, object] = {}   # rebuild parameters applied on release
+
+    def draw(self, host, *, show_panel: bool = True) -> None:
+        """Build this frame's ImGui windows (between ``new_frame`` and ``render``)."""
+        if show_panel:
+            io = imgui.get_io()
+            imgui.set_next_window_pos(imgui.ImVec2(8, 8), imgui.Cond_.first_use_ever)
+            imgui.set_next_window_size(imgui.ImVec2(PANEL_WIDTH, io.display_size.y - 16),
+                                       imgui.Cond_.first_use_ever)
+            imgui.begin("pointmass")
+            imgui.push_item_width(-150)       # leave room for the labels on the right
+            self._controls(host)
+            if imgui.collapsing_header("Parameters", _OPEN):
+                self._parameters(host)
+            if imgui.collapsing_header("World", _OPEN):
+                self._world(host)
+            if imgui.collapsing_header("Statistics", _OPEN):
+                self._statistics(host)
+            if imgui.collapsing_header("Plots", _OPEN):
+                self._plots(host)
+            imgui.pop_item_width()
+            imgui.end()
+        if host.show_help:
+            self._help(host)
+
+    # -- sections -------------------------------------------------------------------------------
+    def _controls(self, host) -> None:
+        clock = host.clock
+        if imgui.button("Resume" if clock.paused else "Pause"):
+            host.act("pause")
+        imgui.same_line()
+        if imgui.button("Step"):
+            host.act("step")
+        imgui.same_line()
+        if imgui.button("Reset"):
+            host.act("reset")
+        imgui.same_line()
+        if imgui.button("Help"):
+            host.act("help")
+        if host.recording:
+            imgui.same_line()
+            imgui.text_colored(imgui.ImVec4(1, 0.3, 0.3, 1), "REC")
+
+    def _parameters(self, host) -> None:
+        params = host.sim.params
+        specs = param_specs(params)
+        if not specs:
+            imgui.text_disabled("(no parameters)")
+            return
+        for spec in specs:
+            value = self._pending.get(spec.name, getattr(params, spec.name))
+            label = spec.name + (" *" if spec.rebuild else "")
+            if spec.kind is bool:
+                changed, value = imgui.checkbox(label, bool(value))
+            elif spec.kind is str:
+                changed, index = imgui.combo(label, spec.choices.index(value), list(spec.choices))
+                value = spec.choices[index]
+            elif spec.kind is int:
+                changed, value = imgui.slider_int(label, int(value), int(spec.low),
+                                                  int(spec.high))
+            else:
+                changed, value = imgui.slider_float(label, float(value), float(spec.low),
+                                                    float(spec.high), "%.4g")
+            if spec.description:
+                imgui.set_item_tooltip(spec.description + (" (rebuilds)" if spec.rebuild else ""))
+            dragging = spec.kind in (int, float) and imgui.is_item_active()
+            if spec.rebuild and dragging:
+                if changed:
+                    self._pending[spec.name] = value      # rebuild once, on release
+            elif spec.name in self._pending and not dragging:
+                host.set_param(spec.name, self._pending.pop(spec.name))
+            elif changed:
+                host.set_param(spec.name, value)
+        if any(s.rebuild for s in specs):
+            imgui.text_disabled("* rebuilds the scene (on release)")
+
+    def _world(self, host) -> None:
+        world = host.sim.scene.world
+        changed, g = imgui.slider_float3("gravity", [float(x) for x in world.gravity],
+                                         -30.0, 30.0, "%.2f")
+        if changed:
+            world.gravity = g
+        for i, gen in enumerate(world.contact_generators):
+            if hasattr(gen, "restitution"):
+                changed, e = imgui.slider_float(f"restitution {type(gen).__name__}##{i}",
+                                                float(gen.restitution), 0.0, 1.0, "%.2f")
+                if changed:
+                    gen.restitution = e
+        changed, index = imgui.combo("resolver", RESOLVERS.index(world.resolver),
+                                     list(RESOLVERS))
+        if changed:
+            world.resolver = RESOLVERS[index]
+        auto = world.iterations is None
+        changed, auto = imgui.checkbox("auto iterations", auto)
+        if changed:
+            world.iterations = None if auto else 100
+        if world.iterations is not None:
+            changed, n = imgui.slider_int("iterations", world.iterations, 1, 2000)
+            if changed:
+                world.iterations = max(1, n)
+        changed, n = imgui.slider_int("substeps", world.substeps, 1, 20)
+        if changed:
+            world.substeps = n
+        changed, scale = imgui.slider_float("time scale", host.clock.time_scale, 0.05, 8.0,
+                                            "%.2fx", imgui.SliderFlags_.logarithmic)
+        if changed:
+            host.clock.time_scale = max(0.05, scale)
+
+    def _statistics(self, host) -> None:
+        s, scene = host.stats, host.sim.scene
+        world = scene.world
+        last = host.sim.last_stats
+        contacts = last.contacts if last is not None else 0
+        rows = (
+            ("sim time", f"{scene.time:.3f} s"),
+            ("real-time factor", f"{s.realtime:.2f}x" + ("  (paused)" if host.clock.paused
+                                                         else "")),
+            ("frames/s", f"{s.fps:.1f}"),
+            ("physics per step", f"{s.step_ms:.2f} ms  (dt {1e3 * host.clock.dt:.2f} ms)"),
+            ("panel per frame", f"{s.gui_ms:.2f} ms"),
+            ("particles", f"{world.particles.count}"),
+            ("contacts", f"{contacts}" + (f"  ({last.mode})" if last is not None else "")),
+            ("kinetic energy", f"{world.kinetic_energy():.4g} J"),
+            ("potential energy", f"{world.potential_energy():.4g} J"),
+        )
+        for name, value in rows:
+            imgui.text(f"{name:<18}{value}")
+
+    def _plots(self, host) -> None:
+        stats = host.stats
+        t = stats.series("t")
+        if len(t) < 2:
+            imgui.text_disabled("(runs when the simulation does)")
+            return
+        flags = implot.AxisFlags_.auto_fit
+        if implot.begin_plot("##energy", imgui.ImVec2(-1, 150)):
+            implot.setup_axes("t [s]", "energy [J]", flags, flags)
+            implot.setup_legend(implot.Location_.north_west)
+            for name in ("kinetic", "potential", "total"):
+                ys = stats.series(name)
+                if len(ys) == len(t):
+                    implot.plot_line(name, t, ys)
+            implot.end_plot()
+        for name in host.sim.scene.plots:
+            ys = stats.series("plot:" + name)
+            if len(ys) != len(t):
+                continue
+            imgui.text(f"{name} = {ys[-1]:.4g}")
+            if implot.begin_plot(f"##{name}", imgui.ImVec2(-1, 120)):
+                implot.setup_axes("t [s]", name, flags, flags)
+                implot.plot_line(name, t, ys)
+                implot.end_plot()
+
+    def _help(self, host) -> None:
+        io = imgui.get_io()
+        imgui.set_next_window_pos(imgui.ImVec2(io.display_size.x / 2, io.display_size.y / 2),
+                                  imgui.Cond_.always, imgui.ImVec2(0.5, 0.5))
+        flags = imgui.WindowFlags_.always_auto_resize | imgui.WindowFlags_.no_collapse
+        _, still_open = imgui.begin("Keys and mouse (F1 / H)", True, flags)
+        if imgui.begin_table("keys", 2):
+            for keys, text in (*host.keymap.help_rows(), *MOUSE_HELP):
+                imgui.table_next_row()
+                imgui.table_next_column()
+                imgui.text(keys)
+                imgui.table_next_column()
+                imgui.text(text)
+            imgui.end_table()
+        imgui.end()
+        if still_open is False:
+            host.act("help")

@@ -1,0 +1,188 @@
+"""The viewer's state and per-frame work, without pyglet: time stepping, drawing the scene into
+the renderer's framebuffer, the panel, keys and captures. ``window.py`` feeds it events.
+
+One frame is ``update(real_dt)`` (physics: as many fixed steps as the clock allows) and then
+``draw(screen)`` (scene into the offscreen FBO, blitted to ``screen``, panel on top).
+"""
+
+from __future__ import annotations
+
+import time
+from pathlib import Path
+
+from imgui_bundle import imgui, implot
+
+from ..render import OrbitCamera, Renderer
+from .blit import Blitter
+from .capture import ViewRecorder, save_png, timestamped
+from .clock import FixedStepClock
+from .imgui_renderer import ImguiRenderer
+from .keymap import KeyMap
+from .mouse import MouseControls
+from .panel import Panel
+from .stats import FrameStats
+
+
+class Viewer:
+    """A simulation on screen.
+
+    Args:
+        ctx: The moderngl context to draw with (the window's).
+        sim: A ``Simulation`` (or ``SceneSimulation``).
+        size: Framebuffer size (width, height) [px].
+        paused: Start paused.
+        output_dir: Where screenshots and videos go.
+        stem: File name start for captures.
+    """
+
+    def __init__(self, ctx, sim, size: tuple[int, int], *, paused: bool = False,
+                 output_dir: Path | str = ".", stem: str = "pointmass") -> None:
+        self.ctx, self.sim = ctx, sim
+        self.clock = FixedStepClock(sim.scene.dt, paused=paused)
+        self.camera = OrbitCamera.from_hint(sim.scene.camera)
+        self.renderer = Renderer(ctx, size)
+        self.mouse = MouseControls(self.camera, sim, lambda: self.renderer.size)
+        demo = getattr(sim, "demo", None)
+        self.keymap = KeyMap(demo.keys if demo is not None else {})
+        self.stats = FrameStats()
+        self.panel = Panel()
+        self.show_panel, self.show_help, self.show_contacts = True, False, False
+        self.output_dir, self.stem = Path(output_dir), stem
+        self.recorder: ViewRecorder | None = None
+        self.messages: list[str] = []        # what happened (screenshot paths...), newest last
+        self.closed = False
+        # ImGui contexts are global: one per viewer, destroyed in close() so tests do not leak.
+        self.imgui_ctx = imgui.create_context()
+        self.implot_ctx = implot.create_context()
+        imgui.get_io().set_ini_filename(None)
+        self.gui = ImguiRenderer(ctx)
+        self.blitter = Blitter(ctx)
+
+    @property
+    def recording(self) -> bool:
+        return self.recorder is not None
+
+    # -- time -----------------------------------------------------------------------------------
+    def update(self, real_dt: float) -> int:
+        """Run the physics steps this frame owes; returns how many ran."""
+        steps = self.clock.advance(real_dt)
+        t0 = time.perf_counter()
+        for _ in range(steps):
+            self.sim.step(self.clock.dt)
+        physics = time.perf_counter() - t0
+        if steps:
+            scene = self.sim.scene
+            scene.record_trails()
+            world = scene.world
+            ke, pe = world.kinetic_energy(), world.potential_energy()
+            values = {"t": scene.time, "kinetic": ke, "potential": pe, "total": ke + pe}
+            for name, fn in scene.plots.items():
+                values["plot:" + name] = fn(scene)
+            self.stats.sample(values)
+        self.stats.frame(real_dt, steps * self.clock.dt, steps, physics)
+        return steps
+
+    # -- drawing --------------------------------------------------------------------------------
+    def draw(self, screen) -> None:
+        """Scene into the FBO, copied to ``screen``, the panel over it."""
+        r = self.renderer
+        r.render(self.sim.scene, self.camera, show_contacts=self.show_contacts,
+                 extra_lines=self.mouse.extra_lines())
+        if self.recorder is not None:
+            self.recorder.offer(r.read_rgb, self.sim.scene.time)
+            if self.recorder.error is not None:
+                self.stop_recording()
+        self.blitter.draw(r.color_texture, screen)
+        t0 = time.perf_counter()
+        imgui.new_frame()
+        self.panel.draw(self, show_panel=self.show_panel)
+        imgui.render()
+        self.gui.render(imgui.get_draw_data())
+        self.stats.gui_ms = 1e3 * (time.perf_counter() - t0)
+
+    def resize(self, size: tuple[int, int]) -> None:
+        if size[0] > 0 and size[1] > 0:
+            self.renderer.resize(size)
+
+    # -- actions (keys, panel buttons) ----------------------------------------------------------
+    def key(self, name: str, *, ctrl: bool = False) -> str | None:
+        """A key press by name; returns the action or demo key it triggered."""
+        action = self.keymap.resolve(name, ctrl=ctrl)
+        if action.kind == "demo":
+            self.sim.press(action.name)
+            return action.name
+        if action.kind == "action":
+            self.act(action.name)
+            return action.name
+        return None
+
+    def act(self, action: str) -> None:
+        clock = self.clock
+        if action == "pause":
+            clock.toggle_pause()
+        elif action == "step":
+            clock.single_step()
+        elif action == "reset":
+            self.mouse.end_grab()
+            self.sim.rebuild()
+            self._after_rebuild()
+        elif action == "slower":
+            clock.slower()
+        elif action == "faster":
+            clock.faster()
+        elif action == "screenshot":
+            self.screenshot()
+        elif action == "record":
+            self.stop_recording() if self.recording else self.start_recording()
+        elif action == "panel":
+            self.show_panel = not self.show_panel
+        elif action == "contacts":
+            self.show_contacts = not self.show_contacts
+        elif action == "help":
+            self.show_help = not self.show_help
+        elif action == "close":
+            self.closed = True
+
+    def set_param(self, name: str, value) -> None:
+        """From the panel: live parameters apply at once, rebuild ones rebuild the scene."""
+        before = self.sim.scene
+        self.sim.set_param(name, value)
+        if self.sim.scene is not before:
+            self.mouse.end_grab()
+            self._after_rebuild()
+
+    def _after_rebuild(self) -> None:
+        self.clock.reset()
+        self.stats.clear_history()
+
+    # -- captures -------------------------------------------------------------------------------
+    def screenshot(self, path: Path | None = None) -> Path:
+        """Save the 3D view as it was last drawn (PNG)."""
+        path = path or timestamped(self.output_dir, self.stem, ".png")
+        save_png(self.renderer.read_rgb(), path)
+        self.messages.append(f"screenshot {path}")
+        return path
+
+    def start_recording(self, path: Path | None = None) -> None:
+        path = path or timestamped(self.output_dir, self.stem, ".mp4")
+        self.recorder = ViewRecorder(path, self.renderer.size)
+        self.messages.append(f"recording {path}")
+
+    def stop_recording(self) -> Path | None:
+        recorder, self.recorder = self.recorder, None
+        if recorder is None:
+            return None
+        path = recorder.close()
+        self.messages.append(f"saved {path}" if recorder.error is None
+                             else f"recording failed: {recorder.error}")
+        return path
+
+    def close(self) -> None:
+        """Finish a recording, free GL objects, destroy the ImGui contexts."""
+        self.stop_recording()
+        self.mouse.end_grab()
+        self.gui.release()
+        self.blitter.release()
+        self.renderer.release()
+        implot.destroy_context(self.implot_ctx)
+        imgui.destroy_context(self.imgui_ctx)

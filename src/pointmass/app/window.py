@@ -1,0 +1,157 @@
+"""The pyglet window: a GL 3.3 context for moderngl, events routed to ImGui and the viewer.
+
+Event routing: every mouse and key event goes to ImGui first (it keeps its own input state);
+the scene gets it only when ImGui does not want it (``io.want_capture_mouse`` /
+``want_capture_keyboard``). A drag belongs to whoever got its press, so a slider drag that leaves
+the panel does not orbit the camera, and an orbit that crosses the panel keeps orbiting.
+
+Sizes: the renderer, viewport and blit use ``get_framebuffer_size()`` (pixels), mouse events come
+in window points, scaled by framebuffer/window size (HiDPI).
+"""
+
+from __future__ import annotations
+
+import time
+
+import moderngl
+import pyglet
+from imgui_bundle import imgui
+from pyglet.window import key, mouse
+
+from .imgui_input import PygletImguiInput
+from .keymap import key_name
+from .viewer import Viewer
+
+_BUTTONS = {mouse.LEFT: "left", mouse.RIGHT: "right", mouse.MIDDLE: "middle"}
+_HELD_KEYS = ("W", "A", "S", "D", "SPACE", "UP", "DOWN", "LEFT", "RIGHT")
+
+
+class ViewerWindow(pyglet.window.Window):
+    """A window on a simulation. Use ``run()`` for the event loop, or drive it yourself with
+    ``tick(real_dt)`` (tests and benchmarks do, with dispatched events)."""
+
+    viewer: Viewer | None = None        # None before the GL set-up and after close
+
+    def __init__(self, sim, *, title: str = "pointmass", size=(1280, 720), paused=False,
+                 output_dir=".", visible=True) -> None:
+        config = pyglet.gl.Config(major_version=3, minor_version=3, forward_compatible=True,
+                                  double_buffer=True, depth_size=24)
+        super().__init__(size[0], size[1], caption=title, resizable=True, config=config,
+                         visible=visible, vsync=False)
+        self.ctx = moderngl.create_context()
+        self.gl_screen = self.ctx.detect_framebuffer(0)
+        stem = "pointmass-" + getattr(getattr(sim, "demo", None), "name", "scene")
+        self.viewer = Viewer(self.ctx, sim, self.get_framebuffer_size(), paused=paused,
+                             output_dir=output_dir, stem=stem)
+        self.imgui_input = PygletImguiInput(self)
+        self._mouse_owner: str | None = None        # "gui" or "scene" while a button is down
+        self._last = None
+
+    # -- the frame ------------------------------------------------------------------------------
+    def tick(self, real_dt: float) -> None:
+        """One whole frame: physics for ``real_dt`` real seconds, draw, flip."""
+        self.viewer.update(real_dt)
+        self.switch_to()
+        self.on_draw()
+        self.flip()
+
+    def on_draw(self) -> None:
+        if self.viewer is None:
+            return
+        self.imgui_input.new_frame_time()
+        self.viewer.draw(self.gl_screen)
+        self.imgui_input.update_cursor()
+        if self.viewer.closed:
+            self.close()
+
+    def _scheduled(self, _dt: float) -> None:
+        now = time.perf_counter()
+        real_dt = now - self._last if self._last is not None else 0.0
+        self._last = now
+        if self.viewer is not None:
+            self.viewer.update(real_dt)  # pyglet.app then calls on_draw and flips
+
+    def run(self) -> None:
+        """The event loop: physics and drawing at the display rate (~60 Hz)."""
+        pyglet.clock.schedule_interval(self._scheduled, 1 / 60)
+        try:
+            pyglet.app.run(1 / 60)
+        finally:
+            pyglet.clock.unschedule(self._scheduled)
+
+    # -- sizes ----------------------------------------------------------------------------------
+    def _to_pixels(self, x: float, y: float) -> tuple[float, float]:
+        """Window points (origin bottom-left) to framebuffer pixels (origin top-left)."""
+        w, h = self.get_size()
+        fw, fh = self.get_framebuffer_size()
+        return x * fw / w, (h - y) * fh / h
+
+    def on_resize(self, width: int, height: int) -> None:
+        if self.viewer is None:
+            return pyglet.event.EVENT_HANDLED
+        self.imgui_input.sync_size()
+        self.viewer.resize(self.get_framebuffer_size())
+        self.gl_screen = self.ctx.detect_framebuffer(0)
+        return pyglet.event.EVENT_HANDLED
+
+    # -- mouse ----------------------------------------------------------------------------------
+    def on_mouse_motion(self, x, y, dx, dy) -> None:
+        self.imgui_input.mouse_move(x, y)
+
+    def on_mouse_press(self, x, y, button, modifiers) -> None:
+        self.imgui_input.mouse_button(x, y, button, True)
+        if imgui.get_io().want_capture_mouse:
+            self._mouse_owner = "gui"
+            return
+        self._mouse_owner = "scene"
+        self.viewer.mouse.press(*self._to_pixels(x, y), _BUTTONS.get(button, "left"),
+                                shift=bool(modifiers & key.MOD_SHIFT),
+                                ctrl=bool(modifiers & key.MOD_CTRL))
+
+    def on_mouse_drag(self, x, y, dx, dy, buttons, modifiers) -> None:
+        self.imgui_input.mouse_move(x, y)
+        if self._mouse_owner == "scene":
+            px, py = self._to_pixels(x, y)
+            scale = self.get_framebuffer_size()[0] / self.get_size()[0]
+            self.viewer.mouse.drag(px, py, dx * scale, -dy * scale)
+
+    def on_mouse_release(self, x, y, button, modifiers) -> None:
+        self.imgui_input.mouse_button(x, y, button, False)
+        owner, self._mouse_owner = self._mouse_owner, None
+        if owner == "scene":
+            self.viewer.mouse.release(*self._to_pixels(x, y), _BUTTONS.get(button, "left"))
+
+    def on_mouse_scroll(self, x, y, scroll_x, scroll_y) -> None:
+        self.imgui_input.scroll(scroll_x, scroll_y)
+        if not imgui.get_io().want_capture_mouse:
+            self.viewer.mouse.scroll(scroll_y)
+
+    # -- keys -----------------------------------------------------------------------------------
+    def on_key_press(self, symbol, modifiers):
+        self.imgui_input.key_event(symbol, True)
+        if imgui.get_io().want_capture_keyboard and symbol != key.ESCAPE:
+            return pyglet.event.EVENT_HANDLED
+        name = key_name(key.symbol_string(symbol))
+        if name in _HELD_KEYS:
+            self.viewer.sim.scene.keys_down.add(name)
+        self.viewer.key(name, ctrl=bool(modifiers & key.MOD_CTRL))
+        if self.viewer.closed:
+            self.close()
+        return pyglet.event.EVENT_HANDLED     # Escape must not close behind our back
+
+    def on_key_release(self, symbol, modifiers) -> None:
+        self.imgui_input.key_event(symbol, False)
+        self.viewer.sim.scene.keys_down.discard(key_name(key.symbol_string(symbol)))
+
+    def on_text(self, text) -> None:
+        self.imgui_input.text(text)
+
+    def on_close(self) -> None:
+        self.close()
+
+    def close(self) -> None:
+        if self.viewer is not None:
+            self.switch_to()
+            viewer, self.viewer = self.viewer, None
+            viewer.close()
+        super().close()
