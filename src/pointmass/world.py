@@ -79,7 +79,7 @@ class World:
     Args:
         gravity: World-wide gravitational acceleration [m/s²] applied to every movable particle.
         iterations: Resolver budget per substep; None means 2 × contacts (the book's choice)
-            for worst-first, and at most 30 passes for sweep (it stops once converged).
+            for worst-first, and at most 10 velocity passes for sweep (it stops once converged).
         resolver: "auto", "worst-first" or "sweep". "auto" uses the warm-started sweep when
             there are more than ``sweep_threshold`` contacts or any keyed contact (collisions,
             links: stacks need the warm start to rest), else the book's worst-first (a few
