@@ -23,6 +23,9 @@ class Panel:
 
     def __init__(self) -> None:
         self._pending: dict[str, object] = {}   # rebuild parameters applied on release
+        self.rects: dict[str, tuple[float, float, float, float]] = {}
+        """Where each parameter's widget was drawn last frame: (x0, y0, x1, y1) in window
+        points, origin top-left (for tests that drag sliders)."""
 
     def draw(self, host, *, show_panel: bool = True) -> None:
         """Build this frame's ImGui windows (between ``new_frame`` and ``render``)."""
@@ -85,6 +88,8 @@ class Panel:
             else:
                 changed, value = imgui.slider_float(label, float(value), float(spec.low),
                                                     float(spec.high), "%.4g")
+            lo, hi = imgui.get_item_rect_min(), imgui.get_item_rect_max()
+            self.rects[spec.name] = (lo.x, lo.y, hi.x, hi.y)
             if spec.description:
                 imgui.set_item_tooltip(spec.description + (" (rebuilds)" if spec.rebuild else ""))
             dragging = spec.kind in (int, float) and imgui.is_item_active()
