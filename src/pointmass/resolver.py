@@ -262,23 +262,34 @@ def _current_penetration(ca, cb, normal, pen0, disp, out):
 
 @njit(cache=True)
 def _lookup_impulses(old_keys, old_impulse, keys, out):
-    """out[c] = the impulse kept for keys[c] (binary search in the sorted ``old_keys``), or 0."""
+    """out[c] = the impulse kept for keys[c] in the sorted ``old_keys``, or 0.
+
+    The keys come in long sorted runs (each generator emits them in order), so this walks
+    both lists together, and binary-searches only where a new run starts.
+    """
     n_old = old_keys.shape[0]
+    j = 0
+    last = -1
     for c in range(keys.shape[0]):
         key = keys[c]
         out[c] = 0.0
         if key < 0:
             continue
-        lo = 0
-        hi = n_old
-        while lo < hi:
-            mid = (lo + hi) >> 1
-            if old_keys[mid] < key:
-                lo = mid + 1
-            else:
-                hi = mid
-        if lo < n_old and old_keys[lo] == key:
-            out[c] = old_impulse[lo]
+        if key < last:  # a new run: find its place
+            lo = 0
+            hi = n_old
+            while lo < hi:
+                mid = (lo + hi) >> 1
+                if old_keys[mid] < key:
+                    lo = mid + 1
+                else:
+                    hi = mid
+            j = lo
+        while j < n_old and old_keys[j] < key:
+            j += 1
+        if j < n_old and old_keys[j] == key:
+            out[c] = old_impulse[j]
+        last = key
 
 
 def _warm_impulses(contacts: ContactBuffer, keys: np.ndarray) -> np.ndarray:
