@@ -6,6 +6,12 @@ contact pulling them together when over-extended, with restitution). A rod holds
 versions tie a particle to a fixed point (the contact's second body is scenery, -1).
 
 One object holds many links (index arrays), like the springs.
+
+A rod at its exact length makes no contact (within ``ROD_TOLERANCE``), so when the resolver
+projects one rod of a chain it may stretch its neighbour after the contacts were made; the world
+therefore regenerates and resolves link contacts for a few extra rounds each step
+(``world.LINK_ROUNDS``). Link contacts carry keys, so the sweep resolver warm-starts a link that
+stays taut.
 """
 
 from __future__ import annotations

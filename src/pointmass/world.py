@@ -23,8 +23,10 @@ class StepStats:
     """What one ``World.step`` did.
 
     Attributes:
-        contacts: Contacts generated in the last substep.
-        iterations: Single-contact resolutions the resolver performed (all substeps).
+        contacts: Contacts generated in the last substep, including speculative ones (a gap
+            within the collision margin, negative penetration).
+        iterations: Single-contact resolutions the resolver performed (all substeps, link
+            rounds included).
         max_penetration: Largest overlap left after resolving [m] (0 when none).
         kinetic_energy: Total kinetic energy after the step [J].
         mode: The resolver mode used in the last substep ("worst-first" or "sweep").
