@@ -80,7 +80,7 @@ def cloth(side: int) -> pm.World:
     """A spring cloth hanging from two corners."""
     positions, springs = cloth_grid(side)
     world = pm.World(gravity=(0, -9.81, 0))
-    world.add_particles(positions, masses=0.01)
+    world.add_particles(positions, masses=0.1)  # k/m small enough for dt = 1/60
     world.particles.pin(0)
     world.particles.pin(side - 1)
     a, b, rest = (np.array(c) for c in zip(*springs))
@@ -140,7 +140,7 @@ def baseline_cloth(side: int) -> cb.World:
     world = cb.World()
     gravity = cb.GravityGenerator(9.81)
     for p in positions.tolist():
-        particle = cb.Particle(p=cb.Vector3(*p), mass=0.01)
+        particle = cb.Particle(p=cb.Vector3(*p), mass=0.1)
         particle.register_force(gravity)
         world.particles.append(particle)
     for k in (0, side - 1):
