@@ -9,6 +9,7 @@ checking that GL holds no error, and must leave no ImGui context behind.
 from __future__ import annotations
 
 import os
+import threading
 from pathlib import Path
 
 import pytest
@@ -64,14 +65,40 @@ def open_viewer(tmp_path):
     assert imgui.get_current_context() is None, "a window left its ImGui context behind"
 
 
-@pytest.fixture(scope="session")
-def egl():
-    """An EGL context for headless GL (the panel golden, the offscreen reference render)."""
-    try:
-        from pointmass.render import create_headless_context
+@pytest.fixture
+def in_egl():
+    """``in_egl(fn)`` runs ``fn(ctx)`` with a fresh EGL context *in its own thread* and returns
+    its result. A thread, because a context current on the main thread would stop the next
+    pyglet window's GLX context from becoming current there (one API per thread in libglvnd)."""
+    def run(fn):
+        result, error = [], []
 
-        ctx = create_headless_context()
-    except Exception as exc:      # no moderngl, or RenderUnavailable
-        _unavailable(f"no EGL OpenGL context: {exc}")
-    yield ctx
-    ctx.release()
+        def work():
+            try:
+                from pointmass.render import create_headless_context
+
+                ctx = create_headless_context()
+            except Exception as exc:      # no moderngl, or RenderUnavailable
+                error.append(("unavailable", exc))
+                return
+            try:
+                result.append(fn(ctx))
+                result.append(ctx.error)
+            except BaseException as exc:
+                error.append(("raised", exc))
+            finally:
+                ctx.release()
+
+        thread = threading.Thread(target=work)
+        thread.start()
+        thread.join()
+        if error:
+            kind, exc = error[0]
+            if kind == "unavailable":
+                _unavailable(f"no EGL OpenGL context: {exc}")
+            raise exc
+        value, gl_error = result
+        assert gl_error == "GL_NO_ERROR"
+        return value
+
+    return run

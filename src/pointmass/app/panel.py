@@ -111,8 +111,9 @@ class Panel:
             world.gravity = g
         for i, gen in enumerate(world.contact_generators):
             if hasattr(gen, "restitution"):
-                changed, e = imgui.slider_float(f"restitution {type(gen).__name__}##{i}",
+                changed, e = imgui.slider_float(f"e {type(gen).__name__}##{i}",
                                                 float(gen.restitution), 0.0, 1.0, "%.2f")
+                imgui.set_item_tooltip(f"restitution of {type(gen).__name__} contacts")
                 if changed:
                     gen.restitution = e
         changed, index = imgui.combo("resolver", RESOLVERS.index(world.resolver),

@@ -38,6 +38,7 @@ class ViewerWindow(pyglet.window.Window):
                                   double_buffer=True, depth_size=24)
         super().__init__(size[0], size[1], caption=title, resizable=True, config=config,
                          visible=visible, vsync=False)
+        self.switch_to()       # another context (an EGL one in tests) may be current
         self.ctx = moderngl.create_context()
         self.gl_screen = self.ctx.detect_framebuffer(0)
         stem = "pointmass-" + getattr(getattr(sim, "demo", None), "name", "scene")
@@ -96,9 +97,13 @@ class ViewerWindow(pyglet.window.Window):
 
     # -- mouse ----------------------------------------------------------------------------------
     def on_mouse_motion(self, x, y, dx, dy) -> None:
+        if self.viewer is None:       # closed
+            return
         self.imgui_input.mouse_move(x, y)
 
     def on_mouse_press(self, x, y, button, modifiers) -> None:
+        if self.viewer is None:       # closed
+            return
         self.imgui_input.mouse_button(x, y, button, True)
         if imgui.get_io().want_capture_mouse:
             self._mouse_owner = "gui"
@@ -109,6 +114,8 @@ class ViewerWindow(pyglet.window.Window):
                                 ctrl=bool(modifiers & key.MOD_CTRL))
 
     def on_mouse_drag(self, x, y, dx, dy, buttons, modifiers) -> None:
+        if self.viewer is None:       # closed
+            return
         self.imgui_input.mouse_move(x, y)
         if self._mouse_owner == "scene":
             px, py = self._to_pixels(x, y)
@@ -116,18 +123,24 @@ class ViewerWindow(pyglet.window.Window):
             self.viewer.mouse.drag(px, py, dx * scale, -dy * scale)
 
     def on_mouse_release(self, x, y, button, modifiers) -> None:
+        if self.viewer is None:       # closed
+            return
         self.imgui_input.mouse_button(x, y, button, False)
         owner, self._mouse_owner = self._mouse_owner, None
         if owner == "scene":
             self.viewer.mouse.release(*self._to_pixels(x, y), _BUTTONS.get(button, "left"))
 
     def on_mouse_scroll(self, x, y, scroll_x, scroll_y) -> None:
+        if self.viewer is None:       # closed
+            return
         self.imgui_input.scroll(scroll_x, scroll_y)
         if not imgui.get_io().want_capture_mouse:
             self.viewer.mouse.scroll(scroll_y)
 
     # -- keys -----------------------------------------------------------------------------------
     def on_key_press(self, symbol, modifiers):
+        if self.viewer is None:
+            return pyglet.event.EVENT_HANDLED
         self.imgui_input.key_event(symbol, True)
         if imgui.get_io().want_capture_keyboard and symbol != key.ESCAPE:
             return pyglet.event.EVENT_HANDLED
@@ -140,10 +153,14 @@ class ViewerWindow(pyglet.window.Window):
         return pyglet.event.EVENT_HANDLED     # Escape must not close behind our back
 
     def on_key_release(self, symbol, modifiers) -> None:
+        if self.viewer is None:       # closed
+            return
         self.imgui_input.key_event(symbol, False)
         self.viewer.sim.scene.keys_down.discard(key_name(key.symbol_string(symbol)))
 
     def on_text(self, text) -> None:
+        if self.viewer is None:       # closed
+            return
         self.imgui_input.text(text)
 
     def on_close(self) -> None:

@@ -1,0 +1,115 @@
+"""The panel drawn headless (EGL + our ImGui renderer) against a golden image.
+
+Fixed display size, frame time and statistics, so the image depends only on the code. Regenerate
+with POINTMASS_UPDATE_GOLDENS=1 (and look at tests/golden/panel.png before committing it).
+"""
+
+from __future__ import annotations
+
+import os
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+GOLDEN = Path(__file__).resolve().parents[1] / "golden"
+SIZE = (380, 760)
+MEAN_TOL, FRACTION_TOL, PIXEL_OFF = 0.5, 0.005, 24
+
+
+class Host:
+    """What the panel needs from the window, with fixed numbers."""
+
+    def __init__(self, sim):
+        from pointmass.app.clock import FixedStepClock
+        from pointmass.app.keymap import KeyMap
+        from pointmass.app.stats import FrameStats
+
+        self.sim = sim
+        self.clock = FixedStepClock(sim.scene.dt)
+        self.keymap = KeyMap(sim.demo.keys)
+        self.stats = FrameStats()
+        s = self.stats
+        s.fps, s.realtime, s.step_ms, s.gui_ms = 60.0, 1.0, 0.25, 0.6
+        for k in range(120):
+            t = k / 60
+            s.sample({"t": t, "kinetic": 10 * np.exp(-t), "potential": 10 - 10 * np.exp(-t),
+                      "total": 10.0, "plot:v_y": -5 * (1 - np.exp(-2 * t))})
+        self.show_help = False
+        self.recording = False
+        self.calls = []
+
+    def set_param(self, name, value):
+        self.calls.append(("set", name, value))
+
+    def act(self, action):
+        self.calls.append(("act", action))
+
+
+def draw_panel(ctx, host, frames: int = 3, *, help_too: bool = False) -> np.ndarray:
+    from imgui_bundle import imgui, implot
+
+    from pointmass.app.imgui_renderer import ImguiRenderer
+    from pointmass.app.panel import Panel
+
+    imgui_ctx, implot_ctx = imgui.create_context(), implot.create_context()
+    try:
+        io = imgui.get_io()
+        io.set_ini_filename(None)
+        io.display_size = imgui.ImVec2(*SIZE)
+        io.display_framebuffer_scale = imgui.ImVec2(1, 1)
+        gui, panel = ImguiRenderer(ctx), Panel()
+        fbo = ctx.simple_framebuffer(SIZE)
+        host.show_help = help_too
+        for _ in range(frames):             # windows settle their size over the first frames
+            io.delta_time = 1 / 60
+            fbo.use()
+            fbo.clear(0.15, 0.16, 0.18, 1.0)
+            imgui.new_frame()
+            panel.draw(host)
+            imgui.render()
+            gui.render(imgui.get_draw_data())
+        rgb = np.frombuffer(fbo.read(components=3), np.uint8).reshape(SIZE[1], SIZE[0], 3)
+        gui.release()
+        (ctx.screen or ctx.detect_framebuffer(0)).use()   # never release a bound framebuffer
+        fbo.release()
+        return rgb[::-1].copy()
+    finally:
+        implot.destroy_context(implot_ctx)
+        imgui.destroy_context(imgui_ctx)
+
+
+@pytest.mark.gl
+def test_panel_matches_golden(in_egl, sim, tmp_path):
+    from PIL import Image
+
+    for _ in range(30):
+        sim.step()
+    rgb = in_egl(lambda ctx: draw_panel(ctx, Host(sim)))
+    path = GOLDEN / "panel.png"
+    if os.environ.get("POINTMASS_UPDATE_GOLDENS") == "1":
+        Image.fromarray(rgb).save(path)
+        return
+    assert path.exists(), "no golden; run with POINTMASS_UPDATE_GOLDENS=1"
+    want = np.asarray(Image.open(path).convert("RGB"))
+    assert want.shape == rgb.shape
+    diff = np.abs(want.astype(np.int16) - rgb.astype(np.int16))
+    mean, off = float(diff.mean()), float((diff.max(axis=2) > PIXEL_OFF).mean())
+    if mean > MEAN_TOL or off >= FRACTION_TOL:
+        Image.fromarray(rgb).save(tmp_path / "panel-actual.png")
+        pytest.fail(f"panel differs from its golden: mean {mean:.3f}, {100 * off:.2f}% off; "
+                    f"actual {tmp_path / 'panel-actual.png'}")
+
+
+@pytest.mark.gl
+def test_help_overlay_lists_demo_keys(in_egl, sim):
+    rgb = in_egl(lambda ctx: draw_panel(ctx, Host(sim), help_too=True))
+    assert rgb.std() > 10                        # something was drawn
+
+
+@pytest.mark.gl
+def test_imgui_context_is_gone_after_drawing(in_egl, sim):
+    from imgui_bundle import imgui
+
+    in_egl(lambda ctx: draw_panel(ctx, Host(sim), frames=1))
+    assert imgui.get_current_context() is None

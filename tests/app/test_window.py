@@ -1,0 +1,204 @@
+"""A real pyglet window (under Xvfb), driven by dispatched events and ``tick`` a fixed number of
+times (never ``pyglet.app.run``)."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+pytestmark = pytest.mark.window
+
+DT = 1 / 60
+
+
+def frames(window, n: int = 1) -> None:
+    for _ in range(n):
+        window.dispatch_events()
+        window.tick(DT)
+
+
+def press_key(window, name: str, modifiers: int = 0) -> None:
+    from pyglet.window import key
+
+    symbol = getattr(key, name)
+    window.dispatch_event("on_key_press", symbol, modifiers)
+    window.dispatch_event("on_key_release", symbol, modifiers)
+    window.dispatch_pending_events()   # pyglet queues dispatched events until then
+
+
+def send(window, event: str, *args) -> None:
+    window.dispatch_event(event, *args)
+    window.dispatch_pending_events()
+
+
+def to_window(window, px: float, py: float) -> tuple[int, int]:
+    """Framebuffer pixels (top-left origin) to pyglet window points (bottom-left origin)."""
+    w, h = window.get_size()
+    fw, fh = window.get_framebuffer_size()
+    return round(px * w / fw), round(h - py * h / fh)
+
+
+def test_pause_single_step_and_resume(open_viewer, sim):
+    w = open_viewer(sim, paused=True)
+    frames(w, 5)
+    assert sim.scene.time == 0.0
+    press_key(w, "RIGHT")
+    frames(w, 3)
+    assert sim.scene.time == pytest.approx(sim.scene.dt)
+    press_key(w, "P")                          # the demo took SPACE (fire); P still pauses
+    frames(w, 6)
+    assert sim.scene.time == pytest.approx(sim.scene.dt * 13, abs=sim.scene.dt * 1.01)
+    press_key(w, "SPACE")
+    assert sim.scene.handles["fired"] == 1
+    assert not w.viewer.clock.paused
+
+
+def test_keys_time_scale_reset_panel_contacts(open_viewer, sim):
+    w = open_viewer(sim, paused=False)
+    frames(w, 10)
+    press_key(w, "MINUS")
+    assert w.viewer.clock.time_scale == 0.5
+    press_key(w, "EQUAL")
+    press_key(w, "EQUAL")
+    assert w.viewer.clock.time_scale == 2.0
+    press_key(w, "BACKSPACE")
+    assert sim.scene.time == 0.0
+    press_key(w, "TAB")
+    press_key(w, "C")
+    press_key(w, "F1")
+    frames(w, 2)
+    assert (w.viewer.show_panel, w.viewer.show_contacts, w.viewer.show_help) == (
+        False, True, True)
+
+
+def test_slider_drag_changes_a_parameter_and_rebuilds_the_scene(open_viewer, sim):
+    w = open_viewer(sim)
+    frames(w, 3)
+    x0, y0, x1, y1 = w.viewer.panel.rects["count"]
+    cy = (y0 + y1) / 2
+    h = w.get_size()[1]
+    before = sim.scene
+    send(w, "on_mouse_motion", x0 + 3, h - cy, 0, 0)
+    frames(w, 2)
+    send(w, "on_mouse_press", x0 + 3, h - cy, 1, 0)
+    frames(w, 2)
+    send(w, "on_mouse_drag", x1 - 2, h - cy, x1 - x0 - 5, 0, 1, 0)
+    frames(w, 2)
+    assert sim.params.count == 3 and sim.scene is before        # rebuilds on release only
+    send(w, "on_mouse_release", x1 - 2, h - cy, 1, 0)
+    frames(w, 3)
+    assert sim.params.count == 20
+    assert sim.scene is not before and sim.scene.world.particles.count == 20
+    assert w.viewer.camera.yaw == pytest.approx(sim.scene.camera.yaw)   # the panel ate it
+
+
+def test_live_slider_applies_at_once(open_viewer, sim):
+    w = open_viewer(sim)
+    frames(w, 3)
+    x0, y0, _x1, y1 = w.viewer.panel.rects["bounce"]
+    cy, h = (y0 + y1) / 2, w.get_size()[1]
+    send(w, "on_mouse_motion", x0 + 3, h - cy, 0, 0)
+    frames(w, 2)
+    send(w, "on_mouse_press", x0 + 3, h - cy, 1, 0)
+    frames(w, 2)
+    assert sim.params.bounce == pytest.approx(0.0, abs=0.02)
+    assert sim.scene.handles["ground"].restitution == sim.params.bounce
+    send(w, "on_mouse_release", x0 + 3, h - cy, 1, 0)
+    frames(w, 2)
+
+
+def test_ctrl_drag_pulls_a_particle(open_viewer, sim):
+    from pyglet.window import key, mouse
+
+    w = open_viewer(sim, paused=False)
+    press_key(w, "TAB")                         # panel away: the particle is in the clear
+    frames(w, 30)                               # let the balls settle on the ground
+    v = w.viewer
+    pos = sim.scene.world.particles.position[2].copy()
+    px, py = v.camera.project(pos[None], v.renderer.size)[0]
+    x, y = to_window(w, px, py)
+    send(w, "on_mouse_motion", x, y, 0, 0)
+    send(w, "on_mouse_press", x, y, mouse.LEFT, key.MOD_CTRL)
+    assert v.mouse.grab is not None and v.mouse.grab.index == 2
+    yaw = v.camera.yaw
+    for k in range(1, 11):                       # drag 120 px up, in steps, as a hand would
+        send(w, "on_mouse_drag", x, y + 12 * k, 0, 12, mouse.LEFT, key.MOD_CTRL)
+        frames(w)
+    frames(w, 60)
+    assert len(v.mouse.extra_lines()) == 1
+    lifted = sim.scene.world.particles.position[2]
+    assert lifted[1] > pos[1] + 0.5, lifted
+    assert v.camera.yaw == yaw                   # a grab does not orbit
+    send(w, "on_mouse_release", x, y + 120, mouse.LEFT, key.MOD_CTRL)
+    assert v.mouse.grab is None and v.mouse.extra_lines() == []
+
+
+def test_drag_on_the_scene_orbits_and_wheel_zooms(open_viewer, sim):
+    w = open_viewer(sim)
+    frames(w, 2)
+    v = w.viewer
+    yaw, distance = v.camera.yaw, v.camera.distance
+    send(w, "on_mouse_motion", 600, 250, 0, 0)
+    frames(w, 2)
+    send(w, "on_mouse_press", 600, 250, 1, 0)
+    send(w, "on_mouse_drag", 650, 250, 50, 0, 1, 0)
+    send(w, "on_mouse_release", 650, 250, 1, 0)
+    send(w, "on_mouse_scroll", 600, 250, 0, 1)
+    frames(w)
+    assert v.camera.yaw != yaw and v.camera.distance < distance
+
+
+def test_screenshot_matches_the_offscreen_render(open_viewer, sim, in_egl, tmp_path):
+    from PIL import Image
+
+    from pointmass.render import Renderer
+
+    w = open_viewer(sim, paused=True)
+    press_key(w, "RIGHT")
+    frames(w, 3)
+    press_key(w, "P", modifiers=2)              # Ctrl+P (MOD_CTRL == 2)
+    shots = list(tmp_path.glob("*.png"))
+    assert len(shots) == 1
+    shot = np.asarray(Image.open(shots[0]).convert("RGB"))
+    size = w.viewer.renderer.size
+    assert shot.shape == (size[1], size[0], 3)
+    camera = w.viewer.camera
+
+    def offscreen(ctx):
+        r = Renderer(ctx, size)
+        r.render(sim.scene, camera)
+        rgb = r.read_rgb()
+        r.release()
+        return rgb
+
+    want = in_egl(offscreen)
+    diff = np.abs(shot.astype(np.int16) - want.astype(np.int16))
+    assert diff.mean() < 1.0
+    assert (diff.max(axis=2) > 24).mean() < 0.005
+
+
+def test_v_records_an_mp4_of_the_view(open_viewer, sim, tmp_path):
+    import av
+
+    w = open_viewer(sim, paused=False)
+    press_key(w, "V")
+    assert w.viewer.recording
+    frames(w, 20)                                # 1/3 s of simulated time at 30 fps: ~10
+    press_key(w, "V")
+    assert not w.viewer.recording
+    videos = list(tmp_path.glob("*.mp4"))
+    assert len(videos) == 1
+    with av.open(str(videos[0])) as c:
+        count = sum(1 for _ in c.decode(video=0))
+    assert 9 <= count <= 12
+
+
+def test_escape_closes_without_gl_errors(open_viewer, sim):
+    from imgui_bundle import imgui
+
+    w = open_viewer(sim)
+    frames(w, 2)
+    assert w.ctx.error == "GL_NO_ERROR"
+    press_key(w, "ESCAPE")
+    assert w.viewer is None
+    assert imgui.get_current_context() is None
