@@ -202,3 +202,30 @@ def test_escape_closes_without_gl_errors(open_viewer, sim):
     press_key(w, "ESCAPE")
     assert w.viewer is None
     assert imgui.get_current_context() is None
+
+
+def test_show_wraps_a_bare_scene_and_reset_restores_it(open_viewer):
+    from pointmass import Ground, Scene, World
+    from pointmass.app.scene_sim import SceneSimulation
+
+    world = World()
+    world.add_particle((0, 2, 0), mass=1.0, radius=0.2)
+    world.add(Ground())
+    sim = SceneSimulation(Scene(world))
+    w = open_viewer(sim, paused=False)
+    frames(w, 20)
+    assert world.particles.position[0, 1] < 2.0
+    press_key(w, "R")
+    assert world.particles.position[0, 1] == 2.0 and sim.scene.time == 0.0
+    frames(w, 2)
+
+
+def test_resize_follows_the_framebuffer(open_viewer, sim):
+    w = open_viewer(sim)
+    frames(w, 2)
+    w.set_size(640, 400)
+    for _ in range(20):                          # the X server answers asynchronously
+        frames(w)
+        if w.viewer.renderer.size == tuple(w.get_framebuffer_size()) == (640, 400):
+            break
+    assert w.viewer.renderer.size == tuple(w.get_framebuffer_size())

@@ -51,6 +51,8 @@ class Viewer:
         self.recorder: ViewRecorder | None = None
         self.messages: list[str] = []        # what happened (screenshot paths...), newest last
         self.closed = False
+        self.physics_budget = 0.05
+        """Seconds of physics one frame may spend before it drops the steps it still owes."""
         # ImGui contexts are global: one per viewer, destroyed in close() so tests do not leak.
         self.imgui_ctx = imgui.create_context()
         self.implot_ctx = implot.create_context()
@@ -67,8 +69,13 @@ class Viewer:
         """Run the physics steps this frame owes; returns how many ran."""
         steps = self.clock.advance(real_dt)
         t0 = time.perf_counter()
-        for _ in range(steps):
+        for done in range(1, steps + 1):
             self.sim.step(self.clock.dt)
+            if done < steps and time.perf_counter() - t0 > self.physics_budget:
+                # A second cap, on time: big scenes stay interactive (slow motion instead).
+                self.clock.dropped += (steps - done) * self.clock.dt
+                steps = done
+                break
         physics = time.perf_counter() - t0
         if steps:
             scene = self.sim.scene
