@@ -19,6 +19,7 @@ def open_window(sim, *, title: str = "pointmass", paused: bool = False, size=(12
 
     Raises:
         NoDisplayError: no display (or pyglet cannot connect to it).
+        RenderUnavailable: the display has no OpenGL 3.3 core context.
     """
     if not has_display():
         raise NoDisplayError(no_display_message(demo_name, "neither DISPLAY nor "
@@ -36,8 +37,14 @@ def open_window(sim, *, title: str = "pointmass", paused: bool = False, size=(12
         return ViewerWindow(sim, title=title, size=size, paused=paused,
                             output_dir=output_dir, visible=visible)
     except Exception as exc:
-        if type(exc).__name__ in ("NoSuchDisplayException", "NoSuchConfigException"):
+        if type(exc).__name__ == "NoSuchDisplayException":
             raise NoDisplayError(no_display_message(demo_name, str(exc))) from None
+        if type(exc).__name__ == "NoSuchConfigException":
+            from ..render import RenderUnavailable
+
+            raise RenderUnavailable(
+                f"the display offers no OpenGL 3.3 core context ({exc}); record offscreen "
+                f"instead: `pointmass record {demo_name or 'DEMO'} -o clip.mp4`") from None
         raise
 
 

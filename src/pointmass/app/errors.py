@@ -13,11 +13,16 @@ class NoDisplayError(RuntimeError):
 
 
 def no_display_message(name: str | None = None, detail: str = "") -> str:
-    demo = name or "DEMO"
+    """The no-display message for the demo ``name``, or for a script (``show``) when None."""
     why = f" ({detail})" if detail else ""
+    if name is None:
+        return (f"no display to open a window on{why}: render offscreen instead "
+                "(pointmass.render.recording.record, or `pointmass record DEMO -o clip.mp4` "
+                "for a demo), or run the script under a virtual display: "
+                "`xvfb-run -a python your_script.py`")
     return (f"no display to open a window on{why}: record a video instead with "
-            f"`pointmass record {demo} -o clip.mp4`, or run under a virtual display: "
-            f"`xvfb-run -a pointmass run {demo}`")
+            f"`pointmass record {name} -o clip.mp4`, or run under a virtual display: "
+            f"`xvfb-run -a pointmass run {name}`")
 
 
 def has_display() -> bool:
