@@ -27,7 +27,7 @@ class FixedStepClock:
             a breakpoint) does not come back as a burst of catch-up.
     """
 
-    def __init__(self, dt: float, *, max_steps: int = 8, time_scale: float = 1.0,
+    def __init__(self, dt: float, *, max_steps: int = 16, time_scale: float = 1.0,
                  paused: bool = False, max_frame_time: float = 0.25) -> None:
         if not (math.isfinite(dt) and dt > 0):
             raise ValueError(f"dt must be a number of seconds > 0, got {dt!r}")

@@ -67,6 +67,9 @@ class Panel:
         if host.recording:
             imgui.same_line()
             imgui.text_colored(imgui.ImVec4(1, 0.3, 0.3, 1), "REC")
+        messages = getattr(host, "messages", None)
+        if messages:                       # the last screenshot or video path
+            imgui.text_wrapped(messages[-1])
 
     def _parameters(self, host) -> None:
         params = host.sim.params

@@ -7,6 +7,7 @@ One frame is ``update(real_dt)`` (physics: as many fixed steps as the clock allo
 
 from __future__ import annotations
 
+import sys
 import time
 from pathlib import Path
 
@@ -167,22 +168,27 @@ class Viewer:
         """Save the 3D view as it was last drawn (PNG)."""
         path = path or timestamped(self.output_dir, self.stem, ".png")
         save_png(self.renderer.read_rgb(), path)
-        self.messages.append(f"screenshot {path}")
+        self._say(f"screenshot {path}")
         return path
 
     def start_recording(self, path: Path | None = None) -> None:
         path = path or timestamped(self.output_dir, self.stem, ".mp4")
         self.recorder = ViewRecorder(path, self.renderer.size)
-        self.messages.append(f"recording {path}")
+        self._say(f"recording {path}")
 
     def stop_recording(self) -> Path | None:
         recorder, self.recorder = self.recorder, None
         if recorder is None:
             return None
         path = recorder.close()
-        self.messages.append(f"saved {path}" if recorder.error is None
-                             else f"recording failed: {recorder.error}")
+        self._say(f"saved {path}" if recorder.error is None
+                  else f"recording failed: {recorder.error}")
         return path
+
+    def _say(self, text: str) -> None:
+        """Tell the user (the panel shows the last message; the terminal gets them all)."""
+        self.messages.append(text)
+        print(f"pointmass: {text}", file=sys.stderr)
 
     def close(self) -> None:
         """Finish a recording, free GL objects, destroy the ImGui contexts."""
