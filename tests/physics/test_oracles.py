@@ -173,3 +173,28 @@ def test_cables_never_over_extend():
         assert lengths.max() <= 1.2 * 1.001
         slack_seen |= bool(lengths.min() < 1.1)
     assert slack_seen
+
+
+@pytest.mark.parametrize("e", [0.5, 0.8, 1.0])
+def test_ball_bounces_back_to_e_squared_of_its_height(e):
+    """Bounce a dropped ball back to about e²·h (the contact margin must not eat the bounce)."""
+    r, h = 0.1, 1.0
+    world = pm.World(restitution_threshold=0.25)
+    ball = world.add_particle(position=(0.0, r + h, 0.0), radius=r)
+    world.add(pm.Ground(restitution=e))
+    bounced = False
+    peak = 0.0
+    for _ in range(150):
+        world.step(DT)
+        vy = world.particles.velocity[ball, 1]
+        bounced |= bool(vy > 0)
+        if bounced:
+            peak = max(peak, world.particles.position[ball, 1] - r)
+            if vy < 0:
+                break
+    assert bounced
+    # The book's resting-contact trick bounces e·(v - g·dt), not e·v, and the discrete
+    # (semi-implicit Euler) peak of a launch at v is v²/2g - v·dt/2.
+    v_out = e * (math.sqrt(2 * G * h) - G * DT)
+    assert peak == pytest.approx(v_out**2 / (2 * G) - v_out * DT / 2, rel=0.03)
+    assert peak == pytest.approx(e * e * h, rel=0.2)
