@@ -229,3 +229,20 @@ def test_resize_follows_the_framebuffer(open_viewer, sim):
         if w.viewer.renderer.size == tuple(w.get_framebuffer_size()) == (640, 400):
             break
     assert w.viewer.renderer.size == tuple(w.get_framebuffer_size())
+
+
+def test_opens_after_an_offscreen_render_on_this_thread(open_viewer, sim):
+    """A notebook renders a clip (EGL, current on the main thread), then calls show()."""
+    from pointmass.render import create_headless_context
+
+    try:
+        egl = create_headless_context()
+    except Exception as exc:
+        pytest.skip(f"no EGL: {exc}")
+    try:
+        w = open_viewer(sim)
+        frames(w, 2)
+        assert w.ctx.error == "GL_NO_ERROR"
+    finally:
+        w.close()
+        egl.release()

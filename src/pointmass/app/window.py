@@ -11,6 +11,7 @@ in window points, scaled by framebuffer/window size (HiDPI).
 
 from __future__ import annotations
 
+import sys
 import time
 
 import moderngl
@@ -18,6 +19,7 @@ import pyglet
 from imgui_bundle import imgui
 from pyglet.window import key, mouse
 
+from .glcurrent import release_current_egl
 from .imgui_input import PygletImguiInput
 from .keymap import key_name
 from .viewer import Viewer
@@ -38,7 +40,9 @@ class ViewerWindow(pyglet.window.Window):
                                   double_buffer=True, depth_size=24)
         super().__init__(size[0], size[1], caption=title, resizable=True, config=config,
                          visible=visible, vsync=False)
-        self.switch_to()       # another context (an EGL one in tests) may be current
+        if sys.platform.startswith("linux"):
+            release_current_egl()     # an earlier offscreen render's context, if any
+        self.switch_to()
         self.ctx = moderngl.create_context()
         self.gl_screen = self.ctx.detect_framebuffer(0)
         stem = "pointmass-" + getattr(getattr(sim, "demo", None), "name", "scene")
