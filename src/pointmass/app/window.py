@@ -25,7 +25,6 @@ from .keymap import key_name
 from .viewer import Viewer
 
 _BUTTONS = {mouse.LEFT: "left", mouse.RIGHT: "right", mouse.MIDDLE: "middle"}
-_HELD_KEYS = ("W", "A", "S", "D", "SPACE", "UP", "DOWN", "LEFT", "RIGHT")
 
 
 class ViewerWindow(pyglet.window.Window):
@@ -149,8 +148,7 @@ class ViewerWindow(pyglet.window.Window):
         if imgui.get_io().want_capture_keyboard and symbol != key.ESCAPE:
             return pyglet.event.EVENT_HANDLED
         name = key_name(key.symbol_string(symbol))
-        if name in _HELD_KEYS:
-            self.viewer.sim.scene.keys_down.add(name)
+        self.viewer.sim.scene.keys_down.add(name)     # demos poll held keys (a WASD load)
         self.viewer.key(name, ctrl=bool(modifiers & key.MOD_CTRL))
         if self.viewer.closed:
             self.close()
@@ -161,6 +159,10 @@ class ViewerWindow(pyglet.window.Window):
             return
         self.imgui_input.key_event(symbol, False)
         self.viewer.sim.scene.keys_down.discard(key_name(key.symbol_string(symbol)))
+
+    def on_deactivate(self) -> None:
+        if self.viewer is not None:           # releases happen elsewhere: forget held keys
+            self.viewer.sim.scene.keys_down.clear()
 
     def on_text(self, text) -> None:
         if self.viewer is None:       # closed
