@@ -46,7 +46,8 @@ class Host:
         self.calls.append(("act", action))
 
 
-def draw_panel(ctx, host, frames: int = 3, *, help_too: bool = False) -> np.ndarray:
+def draw_panel(ctx, host, frames: int = 3, *, help_too: bool = False,
+               world_open: bool = False) -> np.ndarray:
     from imgui_bundle import imgui, implot
 
     from pointmass.app.imgui_renderer import ImguiRenderer
@@ -59,6 +60,7 @@ def draw_panel(ctx, host, frames: int = 3, *, help_too: bool = False) -> np.ndar
         io.display_size = imgui.ImVec2(*SIZE)
         io.display_framebuffer_scale = imgui.ImVec2(1, 1)
         gui, panel = ImguiRenderer(ctx), Panel()
+        panel.world_open = world_open
         fbo = ctx.simple_framebuffer(SIZE)
         host.show_help = help_too
         for _ in range(frames):             # windows settle their size over the first frames
@@ -103,7 +105,7 @@ def test_panel_matches_golden(in_egl, sim, tmp_path):
 
 @pytest.mark.gl
 def test_help_overlay_lists_demo_keys(in_egl, sim):
-    rgb = in_egl(lambda ctx: draw_panel(ctx, Host(sim), help_too=True))
+    rgb = in_egl(lambda ctx: draw_panel(ctx, Host(sim), help_too=True, world_open=True))
     assert rgb.std() > 10                        # something was drawn
 
 

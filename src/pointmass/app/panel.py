@@ -23,6 +23,7 @@ class Panel:
 
     def __init__(self) -> None:
         self._pending: dict[str, object] = {}   # rebuild parameters applied on release
+        self.world_open = False                 # open the World section at first
         self.rects: dict[str, tuple[float, float, float, float]] = {}
         """Where each parameter's widget was drawn last frame: (x0, y0, x1, y1) in window
         points, origin top-left (for tests that drag sliders)."""
@@ -39,12 +40,14 @@ class Panel:
             self._controls(host)
             if imgui.collapsing_header("Parameters", _OPEN):
                 self._parameters(host)
-            if imgui.collapsing_header("World", _OPEN):
-                self._world(host)
             if imgui.collapsing_header("Statistics", _OPEN):
                 self._statistics(host)
             if imgui.collapsing_header("Plots", _OPEN):
                 self._plots(host)
+            if self.world_open:
+                imgui.set_next_item_open(True, imgui.Cond_.once)
+            if imgui.collapsing_header("World"):      # closed at first: less used
+                self._world(host)
             imgui.pop_item_width()
             imgui.end()
         if host.show_help:
@@ -166,7 +169,7 @@ class Panel:
             imgui.text_disabled("(runs when the simulation does)")
             return
         flags = implot.AxisFlags_.auto_fit
-        if implot.begin_plot("##energy", imgui.ImVec2(-1, 150)):
+        if implot.begin_plot("##energy", imgui.ImVec2(-1, 130)):
             implot.setup_axes("t [s]", "energy [J]", flags, flags)
             implot.setup_legend(implot.Location_.north_west)
             for name in ("kinetic", "potential", "total"):
@@ -174,15 +177,18 @@ class Panel:
                 if len(ys) == len(t):
                     implot.plot_line(name, t, ys)
             implot.end_plot()
-        for name in host.sim.scene.plots:
-            ys = stats.series("plot:" + name)
-            if len(ys) != len(t):
-                continue
-            imgui.text(f"{name} = {ys[-1]:.4g}")
-            if implot.begin_plot(f"##{name}", imgui.ImVec2(-1, 120)):
-                implot.setup_axes("t [s]", name, flags, flags)
-                implot.plot_line(name, t, ys)
-                implot.end_plot()
+        names = [n for n in host.sim.scene.plots if len(stats.series("plot:" + n)) == len(t)]
+        if not names:
+            return
+        for name in names:                 # the values now, labelled
+            imgui.text(f"{name} = {stats.series('plot:' + name)[-1]:.4g}")
+        # One plot for all of them: a quantity approaching its limit shows against it.
+        if implot.begin_plot("##quantities", imgui.ImVec2(-1, 140)):
+            implot.setup_axes("t [s]", "", flags, flags)
+            implot.setup_legend(implot.Location_.south_east)
+            for name in names:
+                implot.plot_line(name, t, stats.series("plot:" + name))
+            implot.end_plot()
 
     def _help(self, host) -> None:
         io = imgui.get_io()
