@@ -43,7 +43,7 @@ def build(p: Params) -> Scene:
     side = max(1, int((2 * half - 2 * RADIUS) / (2.4 * RADIUS)))
     k = np.arange(p.count)
     lattice = np.column_stack([k % side, k // (side * side), (k // side) % side]) * 2.4 * RADIUS
-    positions = lattice + (-half + 1.2 * RADIUS, 0.5, -half + 1.2 * RADIUS)
+    positions = lattice + np.array([-half + 1.2 * RADIUS, 0.5, -half + 1.2 * RADIUS])
     positions += rng.uniform(-0.1, 0.1, positions.shape) * RADIUS
     world.add_particles(positions, rng.normal(0.0, 0.3, positions.shape), radii=RADIUS,
                         masses=1.0)

@@ -15,7 +15,17 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from pointmass import BoxVisual, Buoyancy, CameraHint, Drag, Ground, PlaneVisual, Scene, World, tweak
+from pointmass import (
+    BoxVisual,
+    Buoyancy,
+    CameraHint,
+    Drag,
+    Ground,
+    PlaneVisual,
+    Scene,
+    World,
+    tweak,
+)
 
 TITLE = "Buoyancy"
 RADIUS = 0.3
