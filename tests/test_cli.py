@@ -76,10 +76,29 @@ def test_run_without_display_says_what_to_do(monkeypatch, capsys):
     monkeypatch.setattr(sys, "platform", "linux")
     monkeypatch.delenv("DISPLAY", raising=False)
     monkeypatch.delenv("WAYLAND_DISPLAY", raising=False)
+    loaded_before = "pyglet" in sys.modules
     assert main(["run", "side_library"]) == 2
     err = capsys.readouterr().err
     assert "pointmass record" in err and "xvfb-run" in err
-    assert "pyglet" not in sys.modules or "pointmass.app" not in sys.modules
+    assert loaded_before or "pyglet" not in sys.modules, "the check ran after importing pyglet"
+
+
+def test_run_with_an_unreachable_display_is_one_line(monkeypatch, capsys):
+    """A DISPLAY that cannot be opened: one line naming xvfb-run, exit 2, no traceback."""
+    import types
+
+    from pointmass.app.errors import NoDisplayError
+
+    def refuse(name, overrides, paused):
+        raise NoDisplayError("cannot open display :42; try xvfb-run -a pointmass run DEMO")
+
+    fake = types.ModuleType("pointmass.app")
+    fake.run_demo = refuse
+    monkeypatch.setitem(sys.modules, "pointmass.app", fake)
+    monkeypatch.setenv("DISPLAY", ":42")
+    assert main(["run", "side_library"]) == 2
+    err = capsys.readouterr().err
+    assert "xvfb-run" in err and "Traceback" not in err and len(err.strip().splitlines()) == 1
 
 
 def test_run_dispatches_to_the_app(monkeypatch):

@@ -218,8 +218,12 @@ def main(argv: list[str] | None = None) -> int:
         print("pointmass: interrupted", file=sys.stderr)
         return 130
     except Exception as exc:
-        # Matched by name so this module never imports the renderer (and moderngl) itself.
-        if any(c.__name__ == "RenderUnavailable" for c in type(exc).__mro__):
+        # Matched by name so this module never imports the renderer or the window itself.
+        names = {c.__name__ for c in type(exc).__mro__}
+        if "NoDisplayError" in names:
+            print(f"pointmass: error: {exc}", file=sys.stderr)
+            return EXIT_USAGE
+        if "RenderUnavailable" in names:
             print(f"pointmass: error: {exc}", file=sys.stderr)
             return EXIT_FAILURE
         raise
