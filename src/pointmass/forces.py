@@ -118,6 +118,10 @@ def _drag_kernel(force, velocity, idx, k1, k2):
             force[i, 2] -= c * vz
 
 
+#: Below this many particles drag runs on one core (threads cost more than they save).
+PARALLEL_MIN_PARTICLES = 50_000
+
+
 @njit(cache=True, parallel=True)
 def _drag_all_kernel(force, velocity, k1, k2):
     """``_drag_kernel`` on every particle: each row once, so the rows can run on all cores."""
@@ -154,7 +158,8 @@ class Drag(ForceGenerator):
         self._sel.validate(particles)
 
     def apply(self, particles: Particles, dt: float) -> None:
-        if self._sel._given is None:  # every particle once: the parallel kernel is safe
+        if self._sel._given is None and particles.count >= PARALLEL_MIN_PARTICLES:
+            # Every particle once (no repeats), and enough of them to be worth the threads.
             _drag_all_kernel(particles.force, particles.velocity, self._k1, self._k2)
         else:  # given indices may repeat: one thread
             _drag_kernel(particles.force, particles.velocity, self._sel.indices(particles),
