@@ -319,5 +319,6 @@ class FakeSpring(ForceGenerator):
                             self._expect_vel, self._exact_vel, self._valid)
 
     def segments(self, particles: Particles):
+        # A fake spring has no rest length, so no strain to colour by: draw it neutral.
         p = particles.position[self._sel.indices(particles)]
-        return p, self.anchor.copy(), np.linalg.norm(p - self.anchor, axis=1)
+        return p, self.anchor.copy(), np.zeros(len(p))
