@@ -23,6 +23,15 @@ def check_writable(path: str | Path) -> Path:
         raise PermissionError(f"cannot write {path}: folder {parent} is not writable")
     if path.exists() and not os.access(path, os.W_OK):
         raise PermissionError(f"cannot write {path}: the file is not writable")
+    # Permission bits do not tell the whole story (root, read-only mounts, /proc): try it.
+    existed = path.exists()
+    try:
+        with open(path, "ab"):
+            pass
+    except OSError as exc:
+        raise PermissionError(f"cannot write {path}: {exc.strerror or exc}") from None
+    if not existed:
+        path.unlink()
     return path
 
 
