@@ -42,11 +42,11 @@ def build(p: Params) -> Scene:
     gravity = world.add(Gravity((0.0, -p.gravity, 0.0)))
     drag = world.add(Drag(p.k1, p.k2))
     world.add(Ground(0.0, restitution=0.0))
-    table = BoxVisual(center=(-1.0, 99.5, 0.0), half_size=(1.0, 0.5, 1.0),
+    table = BoxVisual(center=(-3.0, 98.5, 0.0), half_size=(3.0, 1.5, 3.0),
                       color=(0.55, 0.35, 0.2))
-    scene = Scene(world, camera=CameraHint(target=(0.0, 70.0, 0.0), distance=75.0, yaw=25.0,
+    scene = Scene(world, camera=CameraHint(target=(6.0, 50.0, 0.0), distance=150.0, yaw=25.0,
                                            pitch=5.0),
-                  colors=np.array([[0.95, 0.8, 0.2]]), point_radius=0.6, trails=[point],
+                  colors=np.array([[0.95, 0.8, 0.2]]), point_radius=1.5, trails=[point],
                   trail_length=400, boxes=[table], dt=1.0 / 60.0,
                   handles={"point": point, "gravity": gravity, "drag": drag, "params": p})
     scene.plots = {
