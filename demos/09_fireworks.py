@@ -1,0 +1,131 @@
+"""Cyclone's fireworks: nine kinds of firework that burst into payloads of other kinds.
+
+A ring buffer of 1024 particles. Each firework type has a rule (the book's numbers): a fuse age
+range, a launch velocity range, a damping, and payloads of (type, count). When its fuse runs
+out a firework dies and its children start where it was, with its velocity plus their own
+random velocity. Dead particles are hidden and pinned. Randomness is seeded, so a run is
+repeatable; one firework is launched automatically every ``launch_interval`` seconds.
+
+Keys: 1–9 launch a firework of that type from x = −5, 0 or 5.   Run: pointmass run fireworks
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from pointmass import CameraHint, Scene, World, tweak
+
+TITLE = "Fireworks"
+POOL = 1024
+#: type: (age range [s], velocity min, velocity max [m/s], damping, payloads [(type, count)])
+RULES = {
+    1: ((0.5, 1.4), (-5, 25, -5), (5, 28, 5), 0.1, [(3, 5), (5, 5)]),
+    2: ((0.5, 1.0), (-5, 10, -5), (5, 20, 5), 0.8, [(4, 2)]),
+    3: ((0.5, 1.5), (-5, -5, -5), (5, 5, 5), 0.1, []),
+    4: ((0.25, 0.5), (-20, 5, -5), (20, 5, 5), 0.2, []),
+    5: ((0.5, 1.0), (-20, 2, -5), (20, 18, 5), 0.01, [(3, 5)]),
+    6: ((3.0, 5.0), (-5, 5, -5), (5, 10, 5), 0.95, []),
+    7: ((4.0, 5.0), (-5, 50, -5), (5, 60, 5), 0.01, [(8, 10)]),
+    8: ((0.25, 0.5), (-1, -1, -1), (1, 1, 1), 0.01, []),
+    9: ((3.0, 5.0), (-15, 10, -5), (15, 15, 5), 0.95, []),
+}
+#: Types the automatic launcher picks from: the ones that rise and burst.
+SHOWY = (1, 2, 5, 7, 9)
+COLORS = np.array([(1, 1, 1), (1.0, 0.3, 0.2), (1.0, 0.8, 0.2), (0.3, 0.9, 0.4), (0.3, 0.6, 1.0),
+                   (0.9, 0.4, 1.0), (1.0, 0.6, 0.2), (0.4, 1.0, 1.0), (1.0, 1.0, 0.6),
+                   (1.0, 0.5, 0.7)], float)
+
+
+@dataclass
+class Params:
+    seed: int = tweak(1, 0, 9999, "Random seed", rebuild=True)
+    launch_interval: float = tweak(0.7, 0.0, 10.0, "Launch a random firework every … [s] (0: off)")
+
+
+def build(p: Params) -> Scene:
+    world = World(gravity=(0.0, -9.81, 0.0))
+    world.add_particles(np.zeros((POOL, 3)), masses=np.inf)
+    return Scene(world, camera=CameraHint(target=(0.0, 6.0, 0.0), distance=22.0, yaw=0.0,
+                                          pitch=4.0, fov=60.0),
+                 colors=np.ones((POOL, 3)), hidden=np.ones(POOL, bool), point_radius=0.3,
+                 dt=1.0 / 60.0,
+                 handles={"params": p, "rng": np.random.default_rng(p.seed), "next": 0,
+                          "type": np.zeros(POOL, int), "age": np.zeros(POOL),
+                          "since_launch": p.launch_interval, "dts": [], "pressed": False})
+
+
+def apply(scene: Scene, p: Params) -> None:
+    scene.handles["params"] = p
+
+
+def create(scene: Scene, kind: int, position, velocity) -> None:
+    """Start one firework of ``kind`` in the next slot of the ring."""
+    h = scene.handles
+    rng = h["rng"]
+    (age_lo, age_hi), v_lo, v_hi, damping, _ = RULES[kind]
+    i = h["next"]
+    h["next"] = (i + 1) % POOL
+    parts = scene.world.particles
+    parts.position[i] = position
+    parts.velocity[i] = np.asarray(velocity) + rng.uniform(v_lo, v_hi)
+    parts.inv_mass[i] = 1.0
+    parts.damping[i] = damping
+    h["type"][i] = kind
+    h["age"][i] = rng.uniform(age_lo, age_hi)
+    scene.colors[i] = COLORS[kind]
+    scene.hidden[i] = False
+
+
+def launch(scene: Scene, kind: int) -> None:
+    x = scene.handles["rng"].choice([-5.0, 0.0, 5.0])
+    create(scene, kind, (x, 0.0, 0.0), (0.0, 0.0, 0.0))
+
+
+def on_step(scene: Scene, dt: float) -> None:
+    h = scene.handles
+    h["dts"].append(dt)
+    p = h["params"]
+    h["since_launch"] += dt
+    if p.launch_interval > 0 and h["since_launch"] >= p.launch_interval:
+        h["since_launch"] = 0.0
+        launch(scene, int(h["rng"].choice(SHOWY)))
+    parts = scene.world.particles
+    live = ~scene.hidden
+    h["age"][live] -= dt
+    expired = np.flatnonzero(live & ((h["age"] < 0) | (parts.position[:, 1] < 0)))
+    for i in expired:  # a fixed order, so the random draws are repeatable
+        pos, vel, kind = parts.position[i].copy(), parts.velocity[i].copy(), h["type"][i]
+        scene.hidden[i] = True
+        parts.inv_mass[i] = 0.0
+        parts.velocity[i] = 0.0
+        for child, count in RULES[kind][4]:
+            for _ in range(count):
+                create(scene, child, pos, vel)
+
+
+def _launcher(kind: int):
+    def press(scene: Scene, p: Params) -> None:
+        scene.handles["pressed"] = True
+        launch(scene, kind)
+    return press
+
+
+KEYS = {str(k): (f"Launch a type-{k} firework", _launcher(k)) for k in RULES}
+
+
+def check(scene: Scene) -> None:
+    """Live particles are finite and within the pool; with no key pressed, replaying the same
+    steps from the same seed gives bit-identical positions."""
+    pos = scene.world.particles.position
+    live = ~scene.hidden
+    assert np.isfinite(pos[live]).all() and live.sum() <= POOL
+    if scene.handles["pressed"]:
+        return
+    again = build(scene.handles["params"])
+    for dt in scene.handles["dts"]:
+        on_step(again, dt)
+        again.world.step(dt)
+    assert np.array_equal(again.world.particles.position, pos), "fireworks are not repeatable"
+    assert np.array_equal(again.hidden, scene.hidden)
