@@ -30,10 +30,10 @@ class Params:
 
 def build(p: Params) -> Scene:
     world = World(gravity=(0.0, 0.0, 0.0))
-    door = world.add_particle((0.0, 0.0, 0.0), (p.speed, 0.0, 0.0), mass=1.0, radius=0.5)
+    door = world.add_particle((0.0, 0.0, 0.0), (p.speed, 0.0, 0.0), mass=1.0, radius=1.0)
     spring = world.add(AnchoredSpring(door, (-2.0, 0.0, 0.0), p.stiffness, p.rest_length,
                                       damping=p.damping))
-    scene = Scene(world, camera=CameraHint(target=(0.0, 0.0, 0.0), distance=55.0, yaw=0.0,
+    scene = Scene(world, camera=CameraHint(target=(0.0, 0.0, 0.0), distance=45.0, yaw=0.0,
                                            pitch=10.0),
                   colors=np.array([[0.35, 0.75, 0.4]]), show_ground=True, ground_height=-2.0,
                   dt=1.0 / 120.0, handles={"door": door, "spring": spring})

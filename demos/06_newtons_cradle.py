@@ -45,7 +45,7 @@ def build(p: Params) -> Scene:
     collisions = world.add(SphereCollisions(restitution=p.restitution))
     colors = np.tile((0.78, 0.80, 0.85), (COUNT, 1))
     colors[: p.lifted] = (0.95, 0.55, 0.2)
-    return Scene(world, camera=CameraHint(target=(0.0, 1.5, 0.0), distance=7.5, yaw=0.0,
+    return Scene(world, camera=CameraHint(target=(0.0, 1.8, 0.0), distance=5.5, yaw=10.0,
                                           pitch=8.0),
                  colors=colors, dt=1.0 / 240.0,
                  handles={"collisions": collisions, "params": p, "last_peak": 0.0,
