@@ -1,0 +1,110 @@
+"""Cyclone's platform: a rigid truss of six particles and fifteen rods that tips under a load.
+
+Two particles rest on the ground (the pivot edge) and four form a 7 m × 2 m top deck that
+overhangs further on one side, so the truss is a see-saw. Every pair of particles is joined by
+a rod, which makes it rigid. A load on the deck is spread bilinearly over its four corners (its
+weight as forces): walk it past the pivot and the platform tips the other way.
+
+Keys: A/D move the load along the deck, W/S across it (hold them to walk).
+Run: pointmass run platform --set load_mass=25
+"""
+
+from __future__ import annotations
+
+import itertools
+from dataclasses import dataclass
+
+import numpy as np
+
+from pointmass import BoxVisual, CameraHint, ForceGenerator, Ground, Rod, Scene, World, tweak
+
+TITLE = "Platform (see-saw truss)"
+G = 9.81
+X_LEFT, X_RIGHT = -3.0, 4.0
+CORNERS = np.array([2, 3, 4, 5])  # left-front, left-back, right-front, right-back
+POSITIONS = np.array([(0, 0, 1), (0, 0, -1), (X_LEFT, 2, 1), (X_LEFT, 2, -1), (X_RIGHT, 2, 1),
+                      (X_RIGHT, 2, -1)], float)
+
+
+@dataclass
+class Params:
+    load_mass: float = tweak(10.0, 0.0, 50.0, "Mass of the load [kg]")
+    particle_mass: float = tweak(1.0, 0.1, 10.0, "Mass of each truss particle [kg]",
+                                 rebuild=True)
+
+
+class Load(ForceGenerator):
+    """The load's weight, shared bilinearly by the deck's four corners; ``u`` in [0, 1] runs
+    along the deck (left to right), ``v`` in [0, 1] across it (front to back)."""
+
+    def __init__(self, mass: float) -> None:
+        self.mass, self.u, self.v = mass, 0.5, 0.5
+
+    def weights(self) -> np.ndarray:
+        u, v = self.u, self.v
+        return np.array([(1 - u) * (1 - v), (1 - u) * v, u * (1 - v), u * v])
+
+    def apply(self, particles, dt: float) -> None:
+        particles.force[CORNERS, 1] -= self.mass * G * self.weights()
+
+
+def build(p: Params) -> Scene:
+    world = World(gravity=(0.0, -G, 0.0))
+    world.add_particles(POSITIONS, masses=p.particle_mass, damping=0.9)
+    a, b = np.array(list(itertools.combinations(range(6), 2))).T
+    rods = world.add(Rod(a, b, np.linalg.norm(POSITIONS[a] - POSITIONS[b], axis=1)))
+    world.add(Ground(restitution=0.1))
+    load = world.add(Load(p.load_mass))
+    box = BoxVisual(half_size=(0.35, 0.35, 0.35), color=(0.85, 0.3, 0.2))
+    scene = Scene(world, camera=CameraHint(target=(0.5, 1.0, 0.0), distance=12.0, yaw=20.0,
+                                           pitch=15.0),
+                  colors=np.array([(0.9, 0.9, 0.9)] * 2 + [(0.3, 0.6, 0.95)] * 4),
+                  boxes=[box], point_radius=0.15, dt=1.0 / 120.0,
+                  handles={"load": load, "box": box, "rods": rods})
+    _place_box(scene)
+    return scene
+
+
+def apply(scene: Scene, p: Params) -> None:
+    scene.handles["load"].mass = p.load_mass
+
+
+def _place_box(scene: Scene) -> None:
+    pos = scene.world.particles.position[CORNERS]
+    under = scene.handles["load"].weights() @ pos
+    scene.handles["box"].center = tuple(under + np.array([0.0, 0.4, 0.0]))
+
+
+def move(scene: Scene, dx: float, dz: float) -> None:
+    """Move the load by (dx, dz) metres along and across the deck."""
+    load = scene.handles["load"]
+    load.u = float(np.clip(load.u + dx / (X_RIGHT - X_LEFT), 0.0, 1.0))
+    load.v = float(np.clip(load.v - dz / 2.0, 0.0, 1.0))
+    _place_box(scene)
+
+
+STEPS = {"W": (0.0, -0.5), "S": (0.0, 0.5), "A": (-0.5, 0.0), "D": (0.5, 0.0)}
+
+
+def on_step(scene: Scene, dt: float) -> None:
+    for key in scene.keys_down & STEPS.keys():  # held keys walk at 4 m/s
+        move(scene, 8 * STEPS[key][0] * dt, 8 * STEPS[key][1] * dt)
+    _place_box(scene)
+
+
+def _mover(key: str):
+    return lambda scene, p: move(scene, *STEPS[key])
+
+
+KEYS = {k: (f"Move the load {d}", _mover(k))
+        for k, d in (("W", "back"), ("S", "forward"), ("A", "left"), ("D", "right"))}
+
+
+def check(scene: Scene) -> None:
+    """Rods keep their lengths within 1 %, and nothing sinks more than 5 cm into the ground."""
+    parts = scene.world.particles
+    assert np.isfinite(parts.position).all()
+    rods = scene.handles["rods"]
+    error = np.abs(rods.current_lengths(parts) / rods.length - 1)
+    assert error.max() < 0.01, f"a rod is off its length by {error.max():.2%}"
+    assert parts.position[:, 1].min() > -0.05, "the platform sank into the ground"
