@@ -3,28 +3,31 @@
 Four kinds of ammunition, each with its own mass, muzzle velocity, gravity and damping (the
 book's numbers): the pistol drops gently, artillery lobs in a high arc, the fireball floats up
 and slows, the laser flies straight. At most 16 rounds live at once (a ring buffer of particles);
-a round dies when it falls below the ground, after 5 s, or past z = 200 m, and is hidden.
+a round dies when it falls below the ground, after 5 s, or past z = 200 m, and is hidden (its
+trail too). Automatic fire cycles through the four kinds unless ``auto_cycle`` is off. White
+markers stand every 20 m down the range.
 
 Keys: 1–4 pick the ammunition, SPACE or a click fires.   Run: pointmass run ballistic
 """
 
 from __future__ import annotations
 
+import dataclasses
 from dataclasses import dataclass
 
 import numpy as np
 
-from pointmass import CameraHint, ForceGenerator, Scene, World, choice, tweak
+from pointmass import BoxVisual, CameraHint, ForceGenerator, Scene, World, choice, tweak
 
 TITLE = "Ballistic"
 POOL = 16
 MUZZLE = np.array([0.0, 1.5, 0.0])
-#: name: (mass [kg], velocity [m/s], gravity [m/s²], damping, color)
+#: name: (mass [kg], velocity [m/s], gravity [m/s²], damping, color, drawn radius [m])
 AMMO = {
-    "pistol": (2.0, (0.0, 0.0, 35.0), (0.0, -1.0, 0.0), 0.99, (0.85, 0.85, 0.85)),
-    "artillery": (200.0, (0.0, 30.0, 40.0), (0.0, -20.0, 0.0), 0.99, (0.35, 0.75, 0.40)),
-    "fireball": (1.0, (0.0, 0.0, 10.0), (0.0, 0.6, 0.0), 0.9, (0.95, 0.45, 0.15)),
-    "laser": (0.1, (0.0, 0.0, 100.0), (0.0, 0.0, 0.0), 0.99, (0.95, 0.25, 0.25)),
+    "pistol": (2.0, (0.0, 0.0, 35.0), (0.0, -1.0, 0.0), 0.99, (0.25, 0.55, 0.95), 0.3),
+    "artillery": (200.0, (0.0, 30.0, 40.0), (0.0, -20.0, 0.0), 0.99, (0.35, 0.75, 0.40), 0.6),
+    "fireball": (1.0, (0.0, 0.0, 10.0), (0.0, 0.6, 0.0), 0.9, (0.95, 0.45, 0.15), 0.5),
+    "laser": (0.1, (0.0, 0.0, 100.0), (0.0, 0.0, 0.0), 0.99, (0.95, 0.25, 0.25), 0.2),
 }
 
 
@@ -32,6 +35,7 @@ AMMO = {
 class Params:
     ammo: str = choice("pistol", AMMO, "Ammunition fired next")
     auto_fire_interval: float = tweak(0.5, 0.0, 5.0, "Fire automatically every … [s] (0: off)")
+    auto_cycle: bool = tweak(True, description="Automatic fire cycles through the four kinds")
 
 
 class RoundGravity(ForceGenerator):
@@ -48,14 +52,17 @@ class RoundGravity(ForceGenerator):
 
 def build(p: Params) -> Scene:
     world = World(gravity=(0.0, 0.0, 0.0))
-    world.add_particles(np.tile(MUZZLE, (POOL, 1)), masses=np.inf, radii=0.5)
+    # Radius is only drawn here (nothing collides): no collision generator is added.
+    world.add_particles(np.tile(MUZZLE, (POOL, 1)), masses=np.inf, radii=0.3)
     gravity = world.add(RoundGravity())
-    scene = Scene(world, camera=CameraHint(target=(0.0, 4.0, 35.0), distance=48.0, yaw=-75.0,
-                                           pitch=10.0, fov=50.0),
-                  colors=np.full((POOL, 3), 0.8), hidden=np.ones(POOL, bool),
-                  point_radius=0.2, trails=list(range(POOL)), trail_length=90, dt=1.0 / 120.0,
+    markers = [BoxVisual(center=(-2.0, 0.3, z), half_size=(0.3, 0.3, 0.3), color=(0.9, 0.9, 0.9))
+               for z in range(20, 201, 20)]
+    scene = Scene(world, camera=CameraHint(target=(0.0, 9.0, 70.0), distance=95.0, yaw=-65.0,
+                                           pitch=12.0, fov=50.0),
+                  colors=np.full((POOL, 3), 0.8), hidden=np.ones(POOL, bool), boxes=markers,
+                  trails=[], trail_length=90, dt=1.0 / 120.0,
                   handles={"params": p, "gravity": gravity, "next": 0, "age": np.zeros(POOL),
-                           "kind": [""] * POOL, "since_fire": 0.0})
+                           "kind": [""] * POOL, "since_fire": 0.0, "cycle": 0})
     return scene
 
 
@@ -68,18 +75,22 @@ def fire(scene: Scene, p: Params) -> None:
     h = scene.handles
     i = h["next"]
     h["next"] = (i + 1) % POOL
-    mass, velocity, g, damping, color = AMMO[p.ammo]
+    mass, velocity, g, damping, color, radius = AMMO[p.ammo]
     parts = scene.world.particles
     parts.position[i] = MUZZLE
     parts.velocity[i] = velocity
     parts.inv_mass[i] = 1.0 / mass
     parts.damping[i] = damping
+    parts.radius[i] = radius
     h["gravity"].g[i] = g
     h["age"][i] = 0.0
     h["kind"][i] = p.ammo
     scene.colors[i] = color
     scene.hidden[i] = False
-    scene._trail_buffer.pop(i, None)  # a fresh round starts a fresh trail
+    # A fresh round starts a fresh trail (the Scene has no public way to clear one).
+    scene._trail_buffer.pop(i, None)
+    if i not in scene.trails:
+        scene.trails.append(i)
 
 
 def _kill(scene: Scene, dead: np.ndarray) -> None:
@@ -89,6 +100,9 @@ def _kill(scene: Scene, dead: np.ndarray) -> None:
     parts.position[:POOL][dead] = MUZZLE
     scene.hidden[dead] = True
     scene.handles["gravity"].g[dead] = 0.0
+    # The renderer draws trails of hidden particles too: drop dead rounds from the trail list,
+    # or a line would join the impact point to the parking place.
+    scene.trails[:] = [i for i in scene.trails if not dead[i]]
 
 
 def on_step(scene: Scene, dt: float) -> None:
@@ -97,7 +111,12 @@ def on_step(scene: Scene, dt: float) -> None:
     h["since_fire"] += dt
     if p.auto_fire_interval > 0 and h["since_fire"] >= p.auto_fire_interval:
         h["since_fire"] = 0.0
-        fire(scene, p)
+        if p.auto_cycle:
+            names = list(AMMO)
+            fire(scene, dataclasses.replace(p, ammo=names[h["cycle"] % len(names)]))
+            h["cycle"] += 1
+        else:
+            fire(scene, p)
     pos = scene.world.particles.position[:POOL]
     live = ~scene.hidden
     dead = live & ((pos[:, 1] < 0.0) | (h["age"] > 5.0) | (pos[:, 2] > 200.0))
@@ -126,7 +145,7 @@ def check(scene: Scene) -> None:
     assert (pos[live, 1] >= -1.0).all() and (pos[live, 2] <= 205.0).all()
     assert (np.abs(pos[live, 0]) < 1e-9).all()
     for i in np.flatnonzero(live):
-        _, v0, g, d, _ = AMMO[h["kind"][i]]
+        _, v0, g, d, _, _ = AMMO[h["kind"][i]]
         t = h["age"][i]
         if t < 0.5:
             continue
