@@ -41,14 +41,14 @@ COLORS = np.array([(1, 1, 1), (1.0, 0.3, 0.2), (1.0, 0.8, 0.2), (0.3, 0.9, 0.4),
 @dataclass
 class Params:
     seed: int = tweak(1, 0, 9999, "Random seed", rebuild=True)
-    launch_interval: float = tweak(0.7, 0.0, 10.0, "Launch a random firework every … [s] (0: off)")
+    launch_interval: float = tweak(0.4, 0.0, 10.0, "Launch a random firework every … [s] (0: off)")
 
 
 def build(p: Params) -> Scene:
     world = World(gravity=(0.0, -9.81, 0.0))
     world.add_particles(np.zeros((POOL, 3)), masses=np.inf)
-    return Scene(world, camera=CameraHint(target=(0.0, 6.0, 0.0), distance=22.0, yaw=0.0,
-                                          pitch=4.0, fov=60.0),
+    return Scene(world, camera=CameraHint(target=(0.0, 8.0, 0.0), distance=26.0, yaw=0.0,
+                                          pitch=-6.0, fov=60.0),
                  colors=np.ones((POOL, 3)), hidden=np.ones(POOL, bool), point_radius=0.3,
                  dt=1.0 / 60.0,
                  handles={"params": p, "rng": np.random.default_rng(p.seed), "next": 0,
