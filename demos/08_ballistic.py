@@ -87,8 +87,8 @@ def fire(scene: Scene, p: Params) -> None:
     h["kind"][i] = p.ammo
     scene.colors[i] = color
     scene.hidden[i] = False
-    # A fresh round starts a fresh trail (the Scene has no public way to clear one).
-    scene._trail_buffer.pop(i, None)
+    # A fresh round starts a fresh trail.
+    scene.clear_trails(i)
     if i not in scene.trails:
         scene.trails.append(i)
 

@@ -106,6 +106,13 @@ class Scene:
             if len(buf) > self.trail_length:
                 del buf[: len(buf) - self.trail_length]
 
+    def clear_trails(self, index: int | None = None) -> None:
+        """Forget the recorded path of one trailed particle (a reused slot), or of all."""
+        if index is None:
+            self._trail_buffer.clear()
+        else:
+            self._trail_buffer.pop(index, None)
+
     def trail_points(self, index: int) -> np.ndarray:
         """The recorded path of one trailed particle, shape (T, 3)."""
         buf = self._trail_buffer.get(index, [])

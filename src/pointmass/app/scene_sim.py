@@ -48,7 +48,7 @@ class SceneSimulation:
         n = min(len(pos), p.count)
         p.position[:n], p.velocity[:n] = pos[:n], vel[:n]
         self.scene.time, self.scene.world.time = t, wt
-        self.scene._trail_buffer.clear()
+        self.scene.clear_trails()
         self.last_stats = None
 
     def press(self, key: str) -> bool:

@@ -93,7 +93,10 @@ def link_lines(scene: Scene, width_scale: float) -> list[np.ndarray]:
 def trail_lines(scene: Scene, colors: np.ndarray, width_scale: float) -> list[np.ndarray]:
     """Line rows for each trailed particle's recent path, fading toward its oldest point."""
     out = []
+    hidden = scene.hidden
     for i in scene.trails:
+        if hidden is not None and i < len(hidden) and hidden[i]:
+            continue  # a dead round or spark: its old path is not its own any more
         pts = scene.trail_points(i)
         if len(pts) < 2:
             continue
@@ -106,14 +109,16 @@ def trail_lines(scene: Scene, colors: np.ndarray, width_scale: float) -> list[np
 def contact_lines(scene: Scene, radii: np.ndarray, width_scale: float) -> list[np.ndarray]:
     """A short line along each contact normal, from the contact point on particle ``a``."""
     c = scene.world.contacts
-    if c.count == 0:
+    touching = c.penetration >= 0.0  # speculative contacts (a gap inside the margin) are not shown
+    if not touching.any():
         return []
     pos = scene.world.particles.position
-    a = c.a
+    a = c.a[touching]
+    normal = c.normal[touching]
     r = radii[a]
-    start = pos[a] - c.normal * r[:, None]
+    start = pos[a] - normal * r[:, None]
     length = np.maximum(1.5 * r, 0.15)
-    end = start + c.normal * length[:, None]
+    end = start + normal * length[:, None]
     return [_rows(start, end, style.CONTACT_COLOR, 1.0, 2.0 * width_scale, 0.0)]
 
 
