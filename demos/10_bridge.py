@@ -27,6 +27,7 @@ from pointmass import (
     World,
     tweak,
 )
+from pointmass.controls import held_direction, wasd_keys
 
 TITLE = "Rope bridge"
 G = 9.81
@@ -104,22 +105,14 @@ def move(scene: Scene, dx: float, dz: float) -> None:
     _place_box(scene)
 
 
-STEPS = {"W": (0.0, -0.5), "S": (0.0, 0.5), "A": (-0.5, 0.0), "D": (0.5, 0.0)}
-
-
 def on_step(scene: Scene, dt: float) -> None:
-    for key in scene.keys_down & STEPS.keys():  # held keys walk at 4 m/s
-        dx, dz = STEPS[key]
-        move(scene, 8 * dx * dt, 8 * dz * dt)
+    dx, dz = held_direction(scene)  # held keys walk the load at 4 m/s
+    if dx or dz:
+        move(scene, 4.0 * dx * dt, 4.0 * dz * dt)
     _place_box(scene)
 
 
-def _mover(key: str):
-    return lambda scene, p: move(scene, *STEPS[key])
-
-
-KEYS = {k: (f"Move the load {d}", _mover(k))
-        for k, d in (("W", "back"), ("S", "forward"), ("A", "left"), ("D", "right"))}
+KEYS = wasd_keys(lambda scene, p, dx, dz: move(scene, 0.5 * dx, 0.5 * dz), "the load")
 
 
 def check(scene: Scene) -> None:

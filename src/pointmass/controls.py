@@ -1,0 +1,38 @@
+"""Keyboard steering for demos: WASD as a direction, held or pressed (no GL, no window).
+
+A demo that moves something with WASD binds the presses with ``wasd_keys`` and reads held keys
+from ``scene.keys_down`` (kept up to date by the viewer) with ``held_direction``:
+
+    KEYS = wasd_keys(lambda scene, p, dx, dz: move(scene, 0.5 * dx, 0.5 * dz), "the load")
+
+    def on_step(scene, dt):
+        dx, dz = held_direction(scene)
+        move(scene, 4.0 * dx * dt, 4.0 * dz * dt)
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+
+from .scene import Scene
+
+#: Key -> (x, z) direction on the ground, as seen from a camera looking along -z.
+WASD = {"W": (0.0, -1.0), "S": (0.0, 1.0), "A": (-1.0, 0.0), "D": (1.0, 0.0)}
+_NAMES = {"W": "back", "S": "forward", "A": "left", "D": "right"}
+
+
+def wasd_keys(action: Callable[[Scene, object, float, float], None],
+              what: str = "the load") -> dict[str, tuple[str, Callable]]:
+    """Demo KEYS for W, A, S and D, each calling ``action(scene, params, dx, dz)``."""
+    def binding(key: str) -> Callable:
+        dx, dz = WASD[key]
+        return lambda scene, params: action(scene, params, dx, dz)
+
+    return {key: (f"Move {what} {_NAMES[key]}", binding(key)) for key in WASD}
+
+
+def held_direction(scene: Scene) -> tuple[float, float]:
+    """The (x, z) direction of the WASD keys held now (each component in [-1, 1])."""
+    dx = sum(WASD[k][0] for k in scene.keys_down if k in WASD)
+    dz = sum(WASD[k][1] for k in scene.keys_down if k in WASD)
+    return max(-1.0, min(1.0, dx)), max(-1.0, min(1.0, dz))
