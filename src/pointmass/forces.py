@@ -104,18 +104,22 @@ class Gravity(ForceGenerator):
         return float(-np.sum(heights / w[moving]))
 
 
+@njit(cache=True, inline="always")
+def _drag_particle(force, velocity, i, k1, k2):
+    vx, vy, vz = velocity[i, 0], velocity[i, 1], velocity[i, 2]
+    speed = np.sqrt(vx * vx + vy * vy + vz * vz)
+    if speed > 0.0:
+        # |F| = k1·|v| + k2·|v|², against v: F = -(k1 + k2·|v|)·v
+        c = k1 + k2 * speed
+        force[i, 0] -= c * vx
+        force[i, 1] -= c * vy
+        force[i, 2] -= c * vz
+
+
 @njit(cache=True)
 def _drag_kernel(force, velocity, idx, k1, k2):
     for k in range(idx.shape[0]):
-        i = idx[k]
-        vx, vy, vz = velocity[i, 0], velocity[i, 1], velocity[i, 2]
-        speed = np.sqrt(vx * vx + vy * vy + vz * vz)
-        if speed > 0.0:
-            # |F| = k1·|v| + k2·|v|², against v: F = -(k1 + k2·|v|)·v
-            c = k1 + k2 * speed
-            force[i, 0] -= c * vx
-            force[i, 1] -= c * vy
-            force[i, 2] -= c * vz
+        _drag_particle(force, velocity, idx[k], k1, k2)
 
 
 #: Below this many particles drag runs on one core (threads cost more than they save).
@@ -124,15 +128,9 @@ PARALLEL_MIN_PARTICLES = 50_000
 
 @njit(cache=True, parallel=True)
 def _drag_all_kernel(force, velocity, k1, k2):
-    """``_drag_kernel`` on every particle: each row once, so the rows can run on all cores."""
+    """Drag on every particle: each row once, so the rows can run on all cores."""
     for i in prange(velocity.shape[0]):
-        vx, vy, vz = velocity[i, 0], velocity[i, 1], velocity[i, 2]
-        speed = np.sqrt(vx * vx + vy * vy + vz * vz)
-        if speed > 0.0:
-            c = k1 + k2 * speed
-            force[i, 0] -= c * vx
-            force[i, 1] -= c * vy
-            force[i, 2] -= c * vz
+        _drag_particle(force, velocity, i, k1, k2)
 
 
 class Drag(ForceGenerator):
