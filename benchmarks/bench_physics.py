@@ -1,6 +1,6 @@
 """Physics benchmark: pointmass against the cookbook-style pure-Python baseline, in one run.
 
-    .venv/bin/python benchmarks/bench_physics.py [--quick]
+    .venv/bin/python benchmarks/bench_physics.py [--quick] [--damping D] [--friction MU]
 
 Prints particle-steps per second (particles × steps / wall time) for each scene and the ratio
 to the baseline (``baseline_cookbook.py``: one object per particle, callables, O(N²) pairs,
@@ -8,6 +8,8 @@ Millington's resolver in plain Python). The baseline is too slow for the full si
 a smaller N for fewer steps and its rate is extrapolated per particle-step; for the O(N²) ball
 pit that flatters the baseline (its cost per particle grows with N). After the ball pit's 600
 steps it also prints the largest speed and the largest penetration as a fraction of the radius.
+``--friction MU`` gives the pit's box and sphere collisions Coulomb friction μ (default 0,
+frictionless, the figures quoted so far); the baseline pit stays frictionless.
 Numba compilation is excluded (one warm-up step before timing).
 """
 
@@ -103,13 +105,14 @@ def pit_layout(n: int, seed: int = 1) -> tuple[np.ndarray, float]:
     return pos, half
 
 
-def ball_pit(n: int, damping: float) -> pm.World:
-    """N spheres dropped into a box with walls, restitution 0.5."""
+def ball_pit(n: int, damping: float, friction: float = 0.0) -> pm.World:
+    """N spheres dropped into a box with walls, restitution 0.5, Coulomb friction μ."""
     pos, half = pit_layout(n)
     world = pm.World(gravity=(0, -9.81, 0))
     world.add_particles(pos, radii=RADIUS, damping=damping)
-    world.add(pm.Box((-half, 0.0, -half), (half, 100.0, half), restitution=0.5))
-    world.add(pm.SphereCollisions(restitution=0.5))
+    world.add(pm.Box((-half, 0.0, -half), (half, 100.0, half), restitution=0.5,
+                     friction=friction))
+    world.add(pm.SphereCollisions(restitution=0.5, friction=friction))
     return world
 
 
@@ -189,7 +192,12 @@ def main() -> None:
     parser.add_argument("--damping", type=float, default=1.0,
                         help="ball-pit particle damping (fraction of velocity kept per second; "
                              "1 = none, the default)")
+    parser.add_argument("--friction", type=float, default=0.0, metavar="MU",
+                        help="ball-pit Coulomb friction coefficient μ >= 0 for the box and the "
+                             "sphere pairs (0 = frictionless, the default)")
     args = parser.parse_args()
+    if not (math.isfinite(args.friction) and args.friction >= 0.0):
+        parser.error(f"--friction must be a finite number >= 0, got {args.friction}")
     q = args.quick
 
     rows = []  # (label, pointmass result, baseline result, target)
@@ -207,7 +215,7 @@ def main() -> None:
     pits = []
     for n, steps in ((1000, 600), (10_000, 120 if q else 600)):
         print(f"running: ball pit N={n} ...", flush=True)
-        world = ball_pit(n, args.damping)
+        world = ball_pit(n, args.damping, args.friction)
         result, stats = run_pointmass(f"pit{n}", world, steps)
         # The target is for the whole 600 steps: a quick run times only the fall (few contacts).
         rows.append((f"ball pit N={n:,}, {steps} steps", result, base_pit,
@@ -225,7 +233,7 @@ def main() -> None:
               f" {tgt:>8s}{ok:6s} {res.note} / {base.note}, {base.steps} steps")
     print()
     print(f"ball pit after its steps (radius {RADIUS} m, restitution 0.5, dt 1/60 s, "
-          f"particle damping {args.damping:g}):")
+          f"particle damping {args.damping:g}, friction {args.friction:g}):")
     for n, steps, speed, pen, stats in pits:
         verdict = ("at rest" if speed < 0.05 and pen <= 0.02 else "NOT at rest") \
             if steps >= 600 else "(quick: too few steps to judge rest)"

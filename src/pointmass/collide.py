@@ -12,6 +12,9 @@ spheres then sinks and oscillates for ever (measured: a 5-sphere stack sank 0.28
 never came to rest). With the margin the touching neighbours are in the list, their penetration is
 updated as particles move, and the resolver treats a gap contact as a collision only if it would
 close within the step (see ``resolver.py``) — the speculative contacts of Box2D and Bullet.
+
+**Friction.** Every generator takes ``friction`` μ ≥ 0 (default 0, frictionless as in the book):
+the Coulomb coefficient written into each contact it reports (see ``resolver.py``).
 """
 
 from __future__ import annotations
@@ -23,7 +26,7 @@ import numpy as np
 from numba import njit
 
 from . import _validate as check
-from .contacts import ContactBuffer, ContactGenerator, restitution_value
+from .contacts import ContactBuffer, ContactGenerator, friction_value, restitution_value
 from .forces import _Selection
 from .particles import Particles
 
@@ -83,10 +86,11 @@ class Plane(ContactGenerator):
         particles: Indices that collide with it, or None for all.
         margin: Report a contact when the gap is below this [m], ≥ 0 (a speculative contact
             with negative penetration); None: 5 % of each particle's radius.
+        friction: Coulomb friction coefficient μ ≥ 0 (0: frictionless).
     """
 
     def __init__(self, normal=(0.0, 1.0, 0.0), offset: float = 0.0, *, restitution: float = 0.5,
-                 particles=None, margin: float | None = None) -> None:
+                 particles=None, margin: float | None = None, friction: float = 0.0) -> None:
         n = check.vec3(normal, "normal")
         length = float(np.linalg.norm(n))
         if length == 0.0:
@@ -94,12 +98,15 @@ class Plane(ContactGenerator):
         self.normal = n / length
         self.offset = check.scalar(offset, "offset")
         self.restitution = restitution
+        self.friction = friction
         self.margin = _margin_value(margin)
         self._sel = _Selection(particles)
         self._key_base = _PLANE_KEY_BIT | ((next(_plane_serials) & 0x7FFFFFFF) << 31)
 
     restitution = property(lambda self: self._restitution, lambda self, v: setattr(
         self, "_restitution", restitution_value(v)), doc="Coefficient of restitution [0, 1].")
+    friction = property(lambda self: self._friction, lambda self, v: setattr(
+        self, "_friction", friction_value(v)), doc="Coulomb friction coefficient μ ≥ 0.")
 
     def validate(self, particles: Particles) -> None:
         self._sel.validate(particles)
@@ -107,6 +114,7 @@ class Plane(ContactGenerator):
     def generate(self, particles: Particles, contacts: ContactBuffer) -> None:
         idx = self._sel.indices(particles)
         margin = -1.0 if self.margin is None else self.margin
+        start = contacts.count
         for _ in range(2):  # the first try reports how much room it needs if short
             a, b, n, pen, rest = contacts.raw()
             total = _plane_contacts(particles.position, particles.radius, particles.inv_mass,
@@ -115,6 +123,7 @@ class Plane(ContactGenerator):
                                     a, b, n, pen, rest, contacts.raw_key(), contacts.count)
             if total <= contacts.capacity:
                 contacts.count = total
+                contacts.raw_friction()[start:total] = self._friction
                 return
             contacts.reserve(total - contacts.count)
 
@@ -123,9 +132,9 @@ class Ground(Plane):
     """The horizontal ground y = ``height`` (Cyclone's GroundContacts, at any height)."""
 
     def __init__(self, height: float = 0.0, *, restitution: float = 0.5, particles=None,
-                 margin: float | None = None) -> None:
+                 margin: float | None = None, friction: float = 0.0) -> None:
         super().__init__((0.0, 1.0, 0.0), height, restitution=restitution, particles=particles,
-                         margin=margin)
+                         margin=margin, friction=friction)
 
     @property
     def height(self) -> float:
@@ -141,11 +150,12 @@ class Box(ContactGenerator):
         ceiling: Also keep particles below ``high[1]``.
         particles: Indices that collide with it, or None for all.
         margin: Contact margin [m], as for ``Plane``.
+        friction: Coulomb friction coefficient μ ≥ 0 of every face (0: frictionless).
     """
 
     def __init__(self, low=(-5.0, 0.0, -5.0), high=(5.0, 10.0, 5.0), *,
                  restitution: float = 0.5, ceiling: bool = False, particles=None,
-                 margin: float | None = None) -> None:
+                 margin: float | None = None, friction: float = 0.0) -> None:
         self.low = check.vec3(low, "low")
         self.high = check.vec3(high, "high")
         if not (self.low < self.high).all():
@@ -155,8 +165,9 @@ class Box(ContactGenerator):
                  ((0, 0, 1), self.low[2]), ((0, 0, -1), -self.high[2])]
         if ceiling:
             faces.append(((0, -1, 0), -self.high[1]))
-        self.planes = [Plane(n, d, restitution=restitution, particles=particles, margin=margin)
-                       for n, d in faces]
+        friction = friction_value(friction)
+        self.planes = [Plane(n, d, restitution=restitution, particles=particles, margin=margin,
+                             friction=friction) for n, d in faces]
         self.ceiling = ceiling
 
     @property
@@ -167,6 +178,16 @@ class Box(ContactGenerator):
     def restitution(self, value: float) -> None:
         for plane in self.planes:
             plane.restitution = value
+
+    @property
+    def friction(self) -> float:
+        return self.planes[0].friction
+
+    @friction.setter
+    def friction(self, value: float) -> None:
+        value = friction_value(value)
+        for plane in self.planes:
+            plane.friction = value
 
     def validate(self, particles: Particles) -> None:
         for plane in self.planes:
@@ -305,17 +326,22 @@ class SphereCollisions(ContactGenerator):
             radius > 0.
         margin: Report pairs whose gap is below this [m], ≥ 0 (speculative contacts with
             negative penetration); None: 5 % of the larger radius of each pair.
+        friction: Coulomb friction coefficient μ ≥ 0 between spheres (0: frictionless).
     """
 
     def __init__(self, *, restitution: float = 0.5, particles=None,
-                 margin: float | None = None) -> None:
+                 margin: float | None = None, friction: float = 0.0) -> None:
         self.restitution = restitution
+        self.friction = friction
+        self.friction = friction
         self.margin = _margin_value(margin)
         self._sel = _Selection(particles)
         self._key_base = _PLANE_KEY_BIT | ((next(_plane_serials) & 0x7FFFFFFF) << 31)
 
     restitution = property(lambda self: self._restitution, lambda self, v: setattr(
         self, "_restitution", restitution_value(v)), doc="Coefficient of restitution [0, 1].")
+    friction = property(lambda self: self._friction, lambda self, v: setattr(
+        self, "_friction", friction_value(v)), doc="Coulomb friction coefficient μ ≥ 0.")
 
     def validate(self, particles: Particles) -> None:
         self._sel.validate(particles)
@@ -330,6 +356,7 @@ class SphereCollisions(ContactGenerator):
         margin = -1.0 if self.margin is None else self.margin
         reach = DEFAULT_MARGIN_FRACTION * largest if self.margin is None else self.margin
         cell = 2.0 * largest + reach  # a cell holds the whole reach: neighbours are 1 cell away
+        start = contacts.count
         # Two tries at most: the first reports how much room it needs if the buffer was short.
         for _ in range(2):
             a, b, n, pen, rest = contacts.raw()
@@ -338,6 +365,7 @@ class SphereCollisions(ContactGenerator):
                                   pen, rest, contacts.raw_key(), contacts.count)
             if total <= contacts.capacity:
                 contacts.count = total
+                contacts.raw_friction()[start:total] = self._friction
                 return
             contacts.reserve(total - contacts.count)
         raise RuntimeError("sphere contact buffer could not grow")  # unreachable

@@ -3,7 +3,9 @@
 A contact says that particle ``a`` must move along ``normal`` away from ``b`` (another particle,
 or ``-1`` for scenery such as the ground): the normal points from b to a. ``penetration`` [m] is
 how far they overlap (negative: a gap, as a slack rod reports), ``restitution`` in [0, 1] how
-much closing speed comes back as separating speed.
+much closing speed comes back as separating speed, and ``friction`` μ ≥ 0 is the Coulomb friction
+coefficient: the tangential impulse a contact may apply is at most μ × its normal impulse (0, the
+default: frictionless, as in the book).
 
 Contacts are stored as a struct of arrays (``ContactBuffer``) so the compiled resolver reads them
 directly; generators append many at once.
@@ -26,6 +28,7 @@ class ContactBuffer:
         normal: Unit normal from b to a, shape (M, 3).
         penetration: Overlap depth [m], shape (M,).
         restitution: Coefficient of restitution in [0, 1], shape (M,).
+        friction: Coulomb friction coefficient μ ≥ 0, shape (M,); 0 (the default) for none.
         key: Identity of the contact across steps, shape (M,), int64; -1 for none. The sweep
             resolver warm-starts a contact with the impulse that the contact with the same key
             needed in the previous step (see ``resolver.py``).
@@ -33,7 +36,8 @@ class ContactBuffer:
 
     def __init__(self, capacity: int = 64) -> None:
         self.count = 0
-        self._warm: tuple[np.ndarray, np.ndarray] | None = None  # (sorted keys, impulses)
+        # (sorted keys, normal impulses (K,), tangential impulses (K, 3) or None if all zero)
+        self._warm: tuple[np.ndarray, np.ndarray, np.ndarray | None] | None = None
         self._alloc(max(int(capacity), 1))
 
     def _alloc(self, capacity: int) -> None:
@@ -45,13 +49,16 @@ class ContactBuffer:
         pen = np.zeros(capacity)
         rest = np.zeros(capacity)
         key = np.full(capacity, -1, np.int64)
+        friction = np.zeros(capacity)
         if old is not None:
             key[:n] = self._key[:n]
+            friction[:n] = self._friction[:n]
             a[:n], b[:n] = self._a[:n], self._b[:n]
             normal[:n], pen[:n], rest[:n] = self._normal[:n], self._penetration[:n], \
                 self._restitution[:n]
         self._a, self._b, self._normal = a, b, normal
         self._penetration, self._restitution, self._key = pen, rest, key
+        self._friction = friction
         self.capacity = capacity
 
     def reserve(self, extra: int) -> None:
@@ -61,6 +68,9 @@ class ContactBuffer:
             self._alloc(max(need, 2 * self.capacity))
 
     def clear(self) -> None:
+        # Zero the friction of the old rows: a compiled generator that writes through ``raw()``
+        # and knows nothing of friction then leaves frictionless contacts, not stale ones.
+        self._friction[: self.count] = 0.0
         self.count = 0
 
     def clear_history(self) -> None:
@@ -77,14 +87,20 @@ class ContactBuffer:
     penetration = property(lambda self: self._penetration[: self.count])
     restitution = property(lambda self: self._restitution[: self.count])
     key = property(lambda self: self._key[: self.count])
+    friction = property(lambda self: self._friction[: self.count])
 
-    def add(self, a, b, normal, penetration, restitution, key=-1) -> None:
+    def add(self, a, b, normal, penetration, restitution, key=-1, *, friction=0.0) -> None:
         """Append contacts; each argument is one value or an array of length K (broadcast).
-        ``key`` identifies a contact across steps (-1: none, no warm start)."""
+        ``key`` identifies a contact across steps (-1: none, no warm start); ``friction`` is the
+        Coulomb coefficient μ ≥ 0 (0: frictionless)."""
         a = np.atleast_1d(np.asarray(a, np.int64))
         k = a.shape[0]
         if k == 0:
             return
+        if not (isinstance(friction, float) and friction == 0.0):
+            friction = np.asarray(friction, np.float64)
+            if not (np.isfinite(friction).all() and (friction >= 0.0).all()):
+                raise ValueError(f"friction must be finite and >= 0, got {friction!r}")
         self.reserve(k)
         s = slice(self.count, self.count + k)
         self._a[s] = a
@@ -93,6 +109,7 @@ class ContactBuffer:
         self._penetration[s] = penetration
         self._restitution[s] = restitution
         self._key[s] = key
+        self._friction[s] = friction
         self.count += k
 
     def raw(self) -> tuple[np.ndarray, ...]:
@@ -103,6 +120,10 @@ class ContactBuffer:
     def raw_key(self) -> np.ndarray:
         """The full backing array of ``key``."""
         return self._key
+
+    def raw_friction(self) -> np.ndarray:
+        """The full backing array of ``friction`` (rows a kernel leaves alone stay 0)."""
+        return self._friction
 
 
 class ContactGenerator:
@@ -129,3 +150,8 @@ class ContactGenerator:
 def restitution_value(value, name: str = "restitution") -> float:
     """A coefficient of restitution, checked to lie in [0, 1]."""
     return check.scalar(value, name, low=0.0, high=1.0)
+
+
+def friction_value(value, name: str = "friction") -> float:
+    """A Coulomb friction coefficient, checked to be finite and ≥ 0."""
+    return check.scalar(value, name, low=0.0)
