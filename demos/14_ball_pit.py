@@ -3,7 +3,8 @@
 The stress test for the engine: sphere–sphere contacts found through a spatial hash (linear in
 N), the box's floor and four walls, and the resolver in sweep mode for thousands of contacts.
 N goes up to 20 000 (a rebuild parameter); the box grows with N so the pile stays a few layers
-deep. The oracle: nothing escapes the box and the spheres barely overlap.
+deep. Friction (Coulomb, in the sweep) lets the pile settle instead of slumping forever.
+The oracle: nothing escapes the box and the spheres barely overlap.
 
 Keys: SPACE stirs the pit (kicks every ball up).   Run: pointmass run ball_pit --set count=5000
 """
@@ -25,6 +26,7 @@ RADIUS = 0.1
 class Params:
     count: int = tweak(2000, 10, 20000, "Number of spheres", rebuild=True)
     restitution: float = tweak(0.5, 0.0, 1.0, "Bounce of spheres and walls")
+    friction: float = tweak(0.5, 0.0, 1.5, "Coulomb friction μ between spheres and walls")
     gravity: float = tweak(9.81, 0.0, 30.0, "Gravity [m/s²]")
     seed: int = tweak(1, 0, 9999, "Random seed of the pour", rebuild=True)
 
@@ -47,8 +49,9 @@ def build(p: Params) -> Scene:
     positions += rng.uniform(-0.1, 0.1, positions.shape) * RADIUS
     world.add_particles(positions, rng.normal(0.0, 0.3, positions.shape), radii=RADIUS,
                         masses=1.0)
-    box = world.add(Box((-half, 0.0, -half), (half, 100.0, half), restitution=p.restitution))
-    spheres = world.add(SphereCollisions(restitution=p.restitution))
+    box = world.add(Box((-half, 0.0, -half), (half, 100.0, half), restitution=p.restitution,
+                        friction=p.friction))
+    spheres = world.add(SphereCollisions(restitution=p.restitution, friction=p.friction))
     hue = positions[:, 1] / max(positions[:, 1].max(), 1e-9)
     colors = np.column_stack([0.95 - 0.6 * hue, 0.35 + 0.4 * np.sin(np.pi * hue), 0.25 + 0.7 * hue])
     walls = [BoxVisual(center=(x, 0.4, z), half_size=(hx, 0.4, hz), color=(0.45, 0.5, 0.6),
@@ -64,6 +67,8 @@ def build(p: Params) -> Scene:
 def apply(scene: Scene, p: Params) -> None:
     scene.handles["box"].restitution = p.restitution
     scene.handles["spheres"].restitution = p.restitution
+    scene.handles["box"].friction = p.friction
+    scene.handles["spheres"].friction = p.friction
     scene.world.gravity = (0.0, -p.gravity, 0.0)
 
 
