@@ -6,19 +6,23 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 
 # --- system packages: Mesa's EGL/GL (llvmpipe), Xvfb for windows without a display --------------
+# Debian names: EGL and GLX dispatch (libegl1, libgl1), Mesa's vendor libraries and its software
+# rasterizer (libegl-mesa0, libglx-mesa0, libgl1-mesa-dri), a virtual X server (xvfb, xauth).
+packages=(libegl1 libegl-mesa0 libgl1 libglx-mesa0 libgl1-mesa-dri xvfb xauth)
 need=()
-ldconfig -p 2>/dev/null | grep -q 'libEGL.so.1' || need+=(libegl1)
-[ -e /usr/lib/x86_64-linux-gnu/dri/swrast_dri.so ] || [ -e /usr/lib/aarch64-linux-gnu/dri/swrast_dri.so ] \
-  || need+=(libgl1-mesa-dri libegl-mesa0)
-ldconfig -p 2>/dev/null | grep -q 'libGL.so.1' || need+=(libgl1 libglx-mesa0)
-command -v xvfb-run >/dev/null || need+=(xvfb xauth)
+if command -v dpkg-query >/dev/null; then
+  for p in "${packages[@]}"; do
+    dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || need+=("$p")
+  done
+fi
 if [ ${#need[@]} -gt 0 ]; then
   sudo=""
   [ "$(id -u)" -ne 0 ] && command -v sudo >/dev/null && sudo=sudo
   if command -v apt-get >/dev/null; then
     echo "setup: installing system packages: ${need[*]}"
     $sudo apt-get update -qq
-    DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq "${need[@]}" >/dev/null
+    DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends \
+      "${need[@]}" >/dev/null
   else
     echo "setup: please install these system packages (Debian names): ${need[*]}" >&2
   fi
@@ -26,8 +30,15 @@ fi
 
 # --- Python environment -------------------------------------------------------------------------
 PY=${PYTHON:-python3}
+"$PY" -c 'import sys; sys.exit(sys.version_info < (3, 11))' \
+  || { echo "setup: pointmass needs Python >= 3.11 (set PYTHON=/path/to/python3.11)" >&2; exit 1; }
 if [ ! -x .venv/bin/python ]; then
-  "$PY" -m venv .venv
+  if ! "$PY" -m venv .venv 2>/dev/null; then
+    # Debian splits venv out of the interpreter package.
+    rm -rf .venv
+    command -v apt-get >/dev/null && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq python3-venv
+    "$PY" -m venv .venv
+  fi
 fi
 .venv/bin/python -m pip install -q --upgrade pip
 .venv/bin/python -m pip install -q -e ".[${EXTRAS:-all}]"
