@@ -27,7 +27,7 @@ from pointmass import (
     World,
     tweak,
 )
-from pointmass.controls import held_direction, wasd_keys
+from pointmass.controls import walk, wasd_keys
 
 TITLE = "Rope bridge"
 G = 9.81
@@ -106,9 +106,7 @@ def move(scene: Scene, dx: float, dz: float) -> None:
 
 
 def on_step(scene: Scene, dt: float) -> None:
-    dx, dz = held_direction(scene)  # held keys walk the load at 4 m/s
-    if dx or dz:
-        move(scene, 4.0 * dx * dt, 4.0 * dz * dt)
+    walk(scene, dt, move)  # held keys walk the load at 4 m/s
     _place_box(scene)
 
 

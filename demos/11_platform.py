@@ -19,7 +19,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from pointmass import BoxVisual, CameraHint, Ground, Rod, Scene, World, tweak
-from pointmass.controls import held_direction, wasd_keys
+from pointmass.controls import walk, wasd_keys
 
 TITLE = "Platform (see-saw truss)"
 G = 9.81
@@ -93,9 +93,7 @@ def move(scene: Scene, dx: float, dz: float) -> None:
 
 
 def on_step(scene: Scene, dt: float) -> None:
-    dx, dz = held_direction(scene)  # held keys walk the load at 4 m/s
-    if dx or dz:
-        move(scene, 4.0 * dx * dt, 4.0 * dz * dt)
+    walk(scene, dt, move)  # held keys walk the load at 4 m/s
     _place_box(scene)
 
 

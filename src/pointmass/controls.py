@@ -6,8 +6,7 @@ from ``scene.keys_down`` (kept up to date by the viewer) with ``held_direction``
     KEYS = wasd_keys(lambda scene, p, dx, dz: move(scene, 0.5 * dx, 0.5 * dz), "the load")
 
     def on_step(scene, dt):
-        dx, dz = held_direction(scene)
-        move(scene, 4.0 * dx * dt, 4.0 * dz * dt)
+        walk(scene, dt, move)          # held keys move it at 4 m/s
 """
 
 from __future__ import annotations
@@ -36,3 +35,11 @@ def held_direction(scene: Scene) -> tuple[float, float]:
     dx = sum(WASD[k][0] for k in scene.keys_down if k in WASD)
     dz = sum(WASD[k][1] for k in scene.keys_down if k in WASD)
     return max(-1.0, min(1.0, dx)), max(-1.0, min(1.0, dz))
+
+
+def walk(scene: Scene, dt: float, move: Callable[[Scene, float, float], None],
+         speed: float = 4.0) -> None:
+    """Call ``move(scene, dx, dz)`` with the step [m] that held WASD keys make in ``dt`` [s]."""
+    dx, dz = held_direction(scene)
+    if dx or dz:
+        move(scene, speed * dx * dt, speed * dz * dt)
