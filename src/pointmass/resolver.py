@@ -90,6 +90,23 @@ def _dot_rel(v, a, b, n, c):
     return v[a, 0] * n[c, 0] + v[a, 1] * n[c, 1] + v[a, 2] * n[c, 2]
 
 
+@njit(cache=True, inline="always")
+def _bounce_target(vs, acc_sep, restitution, threshold):
+    """The separating velocity a closing contact (vs < 0) should leave with [m/s].
+
+    -e·vs, where e is 0 below the restitution threshold; and the resting-contact trick: the
+    closing speed that this step's acceleration alone built up (acc_sep = Δa·n·dt < 0) is not
+    bounced back, so objects resting under gravity do not jitter.
+    """
+    e = restitution if -vs > threshold else 0.0
+    target = -e * vs
+    if acc_sep < 0.0:
+        target += e * acc_sep
+        if target < 0.0:
+            target = 0.0
+    return target
+
+
 @njit(cache=True)
 def _resolve_one(c, pos, vel, acc, inv_mass, ca, cb, normal, pen0, rest, fric, disp, dt,
                  threshold):
@@ -108,15 +125,7 @@ def _resolve_one(c, pos, vel, acc, inv_mass, ca, cb, normal, pen0, rest, fric, d
     vs = _dot_rel(vel, a, b, normal, c)
     depth = pen0[c] - _dot_rel(disp, a, b, normal, c)
     if vs < -VELOCITY_EPSILON and depth - vs * dt > 0.0:  # closing, and touching within dt
-        e = rest[c] if -vs > threshold else 0.0
-        target = -e * vs
-        # Resting-contact trick: do not bounce the closing speed built up by this step's
-        # acceleration alone.
-        acc_sep = _dot_rel(acc, a, b, normal, c) * dt
-        if acc_sep < 0.0:
-            target += e * acc_sep
-            if target < 0.0:
-                target = 0.0
+        target = _bounce_target(vs, _dot_rel(acc, a, b, normal, c) * dt, rest[c], threshold)
         impulse = (target - vs) / total
         for k in range(3):
             vel[a, k] += normal[c, k] * impulse * wa
@@ -204,14 +213,8 @@ def _sweep_setup(vel, acc, inv_mass, ca, cb, normal, pen0, rest, dt, threshold, 
         depth = pen0[c]
         if vs < -VELOCITY_EPSILON and depth - vs * dt > 0.0:
             # A collision (touching now or within the step): bounce, with the resting trick.
-            e = rest[c] if -vs > threshold else 0.0
-            t = -e * vs
-            acc_sep = _dot_rel(acc, a, b, normal, c) * dt
-            if acc_sep < 0.0:
-                t += e * acc_sep
-                if t < 0.0:
-                    t = 0.0
-            target[c] = t
+            target[c] = _bounce_target(vs, _dot_rel(acc, a, b, normal, c) * dt, rest[c],
+                                       threshold)
         elif depth < 0.0:
             target[c] = depth / dt  # a gap: it may close by the gap within the step, not more
         else:
