@@ -103,13 +103,10 @@ def build(p: Params) -> Scene:
         boxes.append(BoxVisual(center=(*((s + e) / 2), 0.0),
                                half_size=(np.linalg.norm(d) / 2, 0.04, 0.6), rotation=rot,
                                color=(0.35, 0.7, 0.45)))
-    top = 2.5 * (p.platforms - 1)
     colors = np.array([(0.95, 0.35, 0.3)] + [(0.95, 0.75, 0.3)] * (COUNT - 1))
-    # Frame the first few ledges around the blob (the book's camera follows the head; a
-    # CameraHint only places the start, so the view is kept to where the blob begins).
-    low = min(top, 7.5)
-    return Scene(world, camera=CameraHint(target=(0.0, low / 2 + 0.5, 0.0),
-                                          distance=low + 9.0, yaw=0.0, pitch=12.0),
+    # The camera follows the head, as the book's does.
+    return Scene(world, camera=CameraHint(target=(0.0, 1.0, 0.0), distance=9.0, yaw=0.0,
+                                          pitch=12.0, follow=0),
                  colors=colors, boxes=boxes, show_ground=False, trails=[0], dt=1.0 / 120.0,
                  handles={"blob": blob, "start": start})
 

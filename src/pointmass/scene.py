@@ -21,7 +21,8 @@ class CameraHint:
     """Where an orbit camera starts: it looks at ``target`` from ``distance`` away.
 
     ``yaw`` turns around the vertical axis and ``pitch`` lifts the eye above the horizon
-    (both in degrees); ``fov`` is the vertical field of view in degrees.
+    (both in degrees); ``fov`` is the vertical field of view in degrees; ``follow`` names a
+    particle to keep in view.
     """
 
     target: tuple[float, float, float] = (0.0, 1.0, 0.0)
@@ -29,6 +30,9 @@ class CameraHint:
     yaw: float = 30.0
     pitch: float = 20.0
     fov: float = 45.0
+    follow: int | None = None
+    """A particle the camera keeps looking at as it moves (the target follows it; orbiting and
+    zooming stay yours), or None for a fixed target."""
 
 
 @dataclass

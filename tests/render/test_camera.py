@@ -99,3 +99,24 @@ def test_from_hint_and_matrices():
     assert np.allclose(cam.view_projection(1.5), view @ proj)
     eye_h = np.r_[cam.eye, 1.0] @ view
     assert np.allclose(eye_h[:3], 0.0, atol=1e-4)     # the eye is the origin of eye space
+
+
+def test_track_keeps_the_followed_particle_at_the_target():
+    """A camera hint that follows a particle puts the target on it, wherever it goes."""
+    from pointmass import Scene, World
+
+    world = World()
+    world.add_particle((0.0, 0.0, 0.0))
+    ball = world.add_particle((3.0, 4.0, -2.0))
+    scene = Scene(world, camera=CameraHint(target=(0.0, 1.0, 0.0), follow=ball))
+    cam = OrbitCamera.from_hint(scene.camera)
+    yaw, distance = cam.yaw, cam.distance
+    cam.track(scene)
+    assert np.array_equal(cam.target, [3.0, 4.0, -2.0])
+    world.particles.position[ball] = (5.0, 1.0, 0.0)
+    cam.track(scene)
+    assert np.array_equal(cam.target, [5.0, 1.0, 0.0])
+    assert (cam.yaw, cam.distance) == (yaw, distance)
+    scene.camera.follow = None
+    cam.track(scene)
+    assert np.array_equal(cam.target, [5.0, 1.0, 0.0])

@@ -94,6 +94,7 @@ class Viewer:
     def draw(self, screen) -> None:
         """Scene into the FBO, copied to ``screen``, the panel over it."""
         r = self.renderer
+        self.camera.track(self.sim.scene)
         r.render(self.sim.scene, self.camera, show_contacts=self.show_contacts,
                  extra_lines=self.mouse.extra_lines())
         if self.recorder is not None:

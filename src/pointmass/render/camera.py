@@ -112,6 +112,13 @@ class OrbitCamera:
         """Look at ``point`` [m] from the same direction and distance."""
         self.target = np.asarray(point, dtype=np.float64).reshape(3).copy()
 
+    def track(self, scene) -> None:
+        """Keep the particle named by ``scene.camera.follow`` (if any) at the target."""
+        index = scene.camera.follow
+        positions = scene.world.particles.position
+        if index is not None and 0 <= index < len(positions):
+            self.focus(positions[index])
+
     # -- screen <-> world ------------------------------------------------------------------------
     def project(self, points, size: tuple[int, int]) -> np.ndarray:
         """Pixel coordinates (origin top-left, x right, y down) of world points (K, 3) → (K, 2).

@@ -135,6 +135,7 @@ def record(simulation, path: str | Path | VideoWriter, *, seconds: float, fps: i
         camera = OrbitCamera.from_hint(simulation.scene.camera)
         encoder.start()
         for index in range(total):
+            camera.track(simulation.scene)
             renderer.render(simulation.scene, camera, show_contacts=show_contacts)
             encoder.put(renderer.read_rgb())
             done = index + 1

@@ -62,7 +62,9 @@ def render_frame(simulation, size: tuple[int, int] = (1280, 720), *, time: float
     try:
         renderer = Renderer(ctx, size)
         scene = simulation.scene
-        renderer.render(scene, OrbitCamera.from_hint(scene.camera), show_contacts=show_contacts)
+        camera = OrbitCamera.from_hint(scene.camera)
+        camera.track(scene)
+        renderer.render(scene, camera, show_contacts=show_contacts)
         rgb = renderer.read_rgb()
         renderer.release()
         return rgb
