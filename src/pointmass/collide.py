@@ -89,6 +89,8 @@ class Plane(ContactGenerator):
         friction: Coulomb friction coefficient μ ≥ 0 (0: frictionless).
     """
 
+    refresh = True
+
     def __init__(self, normal=(0.0, 1.0, 0.0), offset: float = 0.0, *, restitution: float = 0.5,
                  particles=None, margin: float | None = None, friction: float = 0.0) -> None:
         n = check.vec3(normal, "normal")
@@ -152,6 +154,8 @@ class Box(ContactGenerator):
         margin: Contact margin [m], as for ``Plane``.
         friction: Coulomb friction coefficient μ ≥ 0 of every face (0: frictionless).
     """
+
+    refresh = True
 
     def __init__(self, low=(-5.0, 0.0, -5.0), high=(5.0, 10.0, 5.0), *,
                  restitution: float = 0.5, ceiling: bool = False, particles=None,

@@ -135,6 +135,9 @@ class ContactGenerator:
 
     #: Drawing hint for renderers: "cable", "rod" or None (not drawn as lines).
     kind: str | None = None
+    #: True for cheap generators whose contacts the world finds again in its extra link rounds
+    #: (links, planes): a rod that projects a particle may push it back into the ground.
+    refresh: bool = False
 
     def generate(self, particles: Particles, contacts: ContactBuffer) -> None:
         raise NotImplementedError

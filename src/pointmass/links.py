@@ -39,6 +39,8 @@ _link_serials = itertools.count()
 class _Links(ContactGenerator):
     """Pairs a[k]–b[k] (b may be an anchor) with one length each."""
 
+    refresh = True
+
     def _init_pairs(self, a, b, lengths, name: str) -> None:
         self._a_given = np.atleast_1d(np.asarray(a))
         self._b_given = np.atleast_1d(np.asarray(b))

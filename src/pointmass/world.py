@@ -274,18 +274,23 @@ class World:
                                 restitution_threshold=self._restitution_threshold)
 
         # Links again: a rod at its exact length makes no contact, so projecting its neighbour
-        # may have stretched it after the contacts were made. Regenerate link contacts only,
-        # for a few rounds, until every link holds (collisions are not regenerated: costly).
-        links = [g for g in self.contact_generators if g.kind in ("rod", "cable")]
-        for _ in range(LINK_ROUNDS if links else 0):
+        # may have stretched it after the contacts were made. Regenerate the cheap contacts
+        # (links and planes, so a rod cannot push a particle back into the ground) for a few
+        # rounds, until every link holds; sphere collisions are not regenerated: costly.
+        has_links = any(g.kind in ("rod", "cable") for g in self.contact_generators)
+        cheap = [g for g in self.contact_generators if g.refresh]
+        for _ in range(LINK_ROUNDS if has_links else 0):
             self._link_contacts.clear()
-            for generator in links:
+            for generator in cheap:
                 generator.generate(p, self._link_contacts)
             if self._link_contacts.count == 0:
                 break
-            used += resolve_contacts(p, self._link_contacts, dt, mode=mode,
-                                     iterations=self._iterations, warm_start=False,
-                                     restitution_threshold=self._restitution_threshold)
+            round_used = resolve_contacts(p, self._link_contacts, dt, mode=mode,
+                                          iterations=self._iterations, warm_start=False,
+                                          restitution_threshold=self._restitution_threshold)
+            used += round_used
+            if round_used == 0:
+                break  # everything already holds
         return used, mode
 
     # -- measurements ---------------------------------------------------------------------------
