@@ -71,6 +71,21 @@ def test_keys_time_scale_reset_panel_contacts(open_viewer, sim):
         False, True, True)
 
 
+def test_world_settings_from_the_panel_survive_a_reset(open_viewer, sim):
+    """Gravity, substeps and restitution set in the panel are kept when R rebuilds the scene."""
+    w = open_viewer(sim, paused=False)
+    frames(w, 3)
+    w.viewer.set_world("gravity", (0.0, -3.0, 0.0))
+    w.viewer.set_world("substeps", 3)
+    w.viewer.set_world(("restitution", 0), 0.9)
+    press_key(w, "R")
+    frames(w, 2)
+    world = sim.scene.world
+    assert np.array_equal(world.gravity, [0.0, -3.0, 0.0])
+    assert world.substeps == 3
+    assert world.contact_generators[0].restitution == 0.9
+
+
 def test_slider_drag_changes_a_parameter_and_rebuilds_the_scene(open_viewer, sim):
     w = open_viewer(sim)
     frames(w, 3)

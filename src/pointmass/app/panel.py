@@ -114,29 +114,29 @@ class Panel:
         changed, g = imgui.slider_float3("gravity", [float(x) for x in world.gravity],
                                          -30.0, 30.0, "%.2f")
         if changed:
-            world.gravity = g
+            host.set_world("gravity", g)
         for i, gen in enumerate(world.contact_generators):
             if hasattr(gen, "restitution"):
                 changed, e = imgui.slider_float(f"e {type(gen).__name__}##{i}",
                                                 float(gen.restitution), 0.0, 1.0, "%.2f")
                 imgui.set_item_tooltip(f"restitution of {type(gen).__name__} contacts")
                 if changed:
-                    gen.restitution = e
+                    host.set_world(("restitution", i), e)
         changed, index = imgui.combo("resolver", RESOLVERS.index(world.resolver),
                                      list(RESOLVERS))
         if changed:
-            world.resolver = RESOLVERS[index]
+            host.set_world("resolver", RESOLVERS[index])
         auto = world.iterations is None
         changed, auto = imgui.checkbox("auto iterations", auto)
         if changed:
-            world.iterations = None if auto else 100
+            host.set_world("iterations", None if auto else 100)
         if world.iterations is not None:
             changed, n = imgui.slider_int("iterations", world.iterations, 1, 2000)
             if changed:
-                world.iterations = max(1, n)
+                host.set_world("iterations", max(1, n))
         changed, n = imgui.slider_int("substeps", world.substeps, 1, 20)
         if changed:
-            world.substeps = n
+            host.set_world("substeps", n)
         changed, scale = imgui.slider_float("time scale", host.clock.time_scale, 0.05, 8.0,
                                             "%.2fx", imgui.SliderFlags_.logarithmic)
         if changed:

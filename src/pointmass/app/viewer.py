@@ -53,6 +53,8 @@ class Viewer:
         self.messages: list[str] = []        # what happened (screenshot paths...), newest last
         self.closed = False
         self.physics_budget = 0.05
+        #: World settings changed in the panel, re-applied after every reset or rebuild.
+        self.world_overrides: dict = {}
         """Seconds of physics one frame may spend before it drops the steps it still owes."""
         # ImGui contexts are global: one per viewer, destroyed in close() so tests do not leak.
         self.imgui_ctx = imgui.create_context()
@@ -160,7 +162,24 @@ class Viewer:
             self.mouse.end_grab()
             self._after_rebuild()
 
+    def set_world(self, name, value) -> None:
+        """From the panel: change a world setting (a name, or ("restitution", generator index))
+        and remember it, so a reset or a rebuild keeps what the user chose."""
+        self.world_overrides[name] = value
+        self._apply_world(name, value)
+
+    def _apply_world(self, name, value) -> None:
+        world = self.sim.scene.world
+        if isinstance(name, tuple):  # ("restitution", i): one contact generator's
+            generators = world.contact_generators
+            if name[1] < len(generators) and hasattr(generators[name[1]], "restitution"):
+                generators[name[1]].restitution = value
+        else:
+            setattr(world, name, value)
+
     def _after_rebuild(self) -> None:
+        for name, value in self.world_overrides.items():
+            self._apply_world(name, value)
         self.clock.reset()
         self.stats.clear_history()
 
