@@ -6,9 +6,29 @@ import math
 
 import numpy as np
 
+_NOT_NUMBERS = (bool, np.bool_, str, bytes)
+
+
+def numeric(value, name: str, what: str = "a number"):
+    """Refuse booleans and strings where a number (or an array of numbers) is expected.
+
+    numpy turns ``True`` into 1.0 and ``"1"`` into 1.0 without a word, so ``mass=True`` or
+    ``step("0.1")`` would otherwise run with a value the user never wrote as a number."""
+    if isinstance(value, _NOT_NUMBERS):
+        raise ValueError(f"{name} must be {what}, got {type(value).__name__} {value!r}")
+    if isinstance(value, np.ndarray):
+        if value.dtype.kind in "bSUO":
+            raise ValueError(f"{name} must be {what}, got an array of {value.dtype}")
+    elif isinstance(value, (list, tuple)):
+        flat = np.asarray(value, dtype=object).reshape(-1)
+        if any(isinstance(v, _NOT_NUMBERS) for v in flat):
+            raise ValueError(f"{name} must be {what}, got {value!r}")
+    return value
+
 
 def vec3(value, name: str) -> np.ndarray:
     """A finite 3-vector as float64, or a ValueError naming ``name``."""
+    numeric(value, name, "a 3-vector of finite numbers")
     try:
         arr = np.asarray(value, dtype=np.float64).reshape(3)
     except (TypeError, ValueError):
@@ -20,6 +40,7 @@ def vec3(value, name: str) -> np.ndarray:
 
 def vec3_array(value, name: str, count: int | None = None) -> np.ndarray:
     """Finite vectors of shape (count, 3) (a single vector broadcasts)."""
+    numeric(value, name, "an array of 3-vectors")
     try:
         arr = np.asarray(value, dtype=np.float64)
     except (TypeError, ValueError):
@@ -38,6 +59,7 @@ def vec3_array(value, name: str, count: int | None = None) -> np.ndarray:
 def scalar_array(value, name: str, count: int, *, low: float = -math.inf, high: float = math.inf,
                  low_open: bool = False, high_open: bool = False) -> np.ndarray:
     """Finite scalars of shape (count,) inside [low, high] (or open ends); one value broadcasts."""
+    numeric(value, name, "a number or an array of numbers")
     try:
         arr = np.asarray(value, dtype=np.float64)
     except (TypeError, ValueError):

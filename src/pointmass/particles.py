@@ -194,8 +194,15 @@ def _kinetic_energy(velocity, inv_mass):
     return 0.5 * total
 
 
+#: Masses must lie in [MIN_MASS, MAX_MASS] kg (or be inf, immovable): both ends keep 1/m and
+#: m·g finite with room to spare (5e-324 kg inverts to inf; the first step then fails).
+MIN_MASS = 1e-12
+MAX_MASS = 1e18
+
+
 def inverse_masses(masses, count: int) -> np.ndarray:
-    """Inverse masses from masses in (0, inf] (``inf`` gives 0, immovable)."""
+    """Inverse masses from masses in [MIN_MASS, MAX_MASS] or inf (``inf`` gives 0, immovable)."""
+    check.numeric(masses, "mass", "a number of kg")
     try:
         m = np.asarray(masses, dtype=np.float64)
     except (TypeError, ValueError):
@@ -204,9 +211,10 @@ def inverse_masses(masses, count: int) -> np.ndarray:
         m = np.full(count, float(m))
     if m.shape != (count,):
         raise ValueError(f"mass must be a number or have shape ({count},), got {m.shape}")
-    bad = ~(m > 0)  # catches NaN too
+    bad = ~((m >= MIN_MASS) & (m <= MAX_MASS) | (m == np.inf))  # catches NaN too
     if bad.any():
-        raise ValueError(f"mass must be in (0, inf] kg (inf = immovable), got {m[bad][0]}")
+        raise ValueError(f"mass must be in (0, inf] kg: between {MIN_MASS:g} and {MAX_MASS:g}, "
+                         f"or inf for immovable; got {m[bad][0]}")
     with np.errstate(divide="ignore"):
         return np.where(np.isinf(m), 0.0, 1.0 / m)
 

@@ -135,6 +135,8 @@ class World:
         self.restitution_threshold = restitution_threshold
         self.substeps = substeps
         self.time = 0.0
+        #: The particle count that every generator was last validated against.
+        self._checked_count = 0
 
     # -- settings, checked on assignment --------------------------------------------------------
     @property
@@ -202,6 +204,9 @@ class World:
 
         Particle indices are checked here, against the particles that exist now.
         """
+        if any(generator is g for g in (*self.forces, *self.contact_generators)):
+            raise ValueError(f"{type(generator).__name__} is already in this world: adding it "
+                             "again would apply it twice (add another instance for more)")
         if isinstance(generator, ForceGenerator):
             generator.validate(self.particles)
             self.forces.append(generator)
@@ -211,7 +216,24 @@ class World:
         else:
             raise TypeError(f"world.add takes a ForceGenerator or ContactGenerator, got "
                             f"{type(generator).__name__}")
+        self._checked_count = max(self._checked_count, self.particles.count)
         return generator
+
+    def _check_references(self) -> None:
+        """Generators were validated against the particles that existed then; if particles
+        have gone since (``particles.restore`` of an older snapshot), validate them again, so a
+        spring to a dropped particle fails here, naming it, instead of reading a stale row."""
+        count = self.particles.count
+        if count < self._checked_count:
+            for generator in (*self.forces, *self.contact_generators):
+                try:
+                    generator.validate(self.particles)
+                except (IndexError, ValueError) as error:
+                    raise IndexError(
+                        f"{type(generator).__name__} refers to a particle that no longer exists "
+                        f"(the world has {count} now): {error}; remove it with world.remove() "
+                        "or restore a snapshot that has its particles") from None
+        self._checked_count = count
 
     def remove(self, generator) -> None:
         """Remove a generator added with ``add``."""
@@ -224,8 +246,11 @@ class World:
     # -- the step -------------------------------------------------------------------------------
     def step(self, dt: float) -> StepStats:
         """Advance by ``dt`` seconds (> 0), in ``substeps`` equal parts."""
-        if not (isinstance(dt, (int, float, np.floating)) and math.isfinite(dt) and dt > 0):
+        if isinstance(dt, (bool, np.bool_)) or not (
+                isinstance(dt, (int, float, np.integer, np.floating)) and math.isfinite(dt)
+                and dt > 0):
             raise ValueError(f"dt must be a finite number of seconds > 0, got {dt!r}")
+        self._check_references()
         h = float(dt) / self._substeps
         iterations = 0
         for _ in range(self._substeps):

@@ -139,3 +139,61 @@ def test_custom_force_returning_nan_is_refused():
     world.add(pm.CustomForce(lambda p: (0.0, math.nan, 0.0)))
     with pytest.raises(ValueError, match="for particle 0; it must return a finite 3-vector"):
         world.step(DT)
+
+
+@pytest.mark.parametrize("bad", [True, False, "1", b"1", [1.0, True], np.array([True])])
+def test_a_mass_that_is_not_a_number_is_refused(bad):
+    """``mass=True`` or ``mass="1"`` would silently become 1 kg through numpy: refuse them."""
+    world = pm.World()
+    with pytest.raises(ValueError, match="mass must be a number"):
+        if isinstance(bad, list):
+            world.add_particles([(0, 0, 0), (1, 0, 0)], masses=bad)
+        else:
+            world.add_particle(mass=bad)
+    assert world.particles.count == 0
+
+
+@pytest.mark.parametrize("mass", [5e-324, 1e-13, 1e19])
+def test_a_mass_that_cannot_be_inverted_safely_is_refused(mass):
+    """5e-324 kg inverts to inf (the first step would fail): refuse it when it is given."""
+    with pytest.raises(ValueError, match=r"mass must be in \(0, inf\] kg: between 1e-12"):
+        pm.World().add_particle(mass=mass)
+
+
+@pytest.mark.parametrize("dt", [True, "0.1", None, [0.1]])
+def test_a_dt_that_is_not_a_number_is_refused(dt):
+    """``step(True)`` would run one whole second: refuse it."""
+    world = pm.World()
+    world.add_particle()
+    with pytest.raises(ValueError, match="dt must be a finite number of seconds"):
+        world.step(dt)
+    assert world.time == 0.0
+
+
+def test_the_same_generator_added_twice_is_refused():
+    """Adding one generator twice would apply its forces twice: refuse, keep one."""
+    world = pm.World()
+    a, b = world.add_particles([(0, 0, 0), (1, 0, 0)])
+    spring = world.add(pm.Spring(a, b, 10.0, 1.0))
+    ground = world.add(pm.Ground())
+    for generator in (spring, ground):
+        with pytest.raises(ValueError, match="already in this world"):
+            world.add(generator)
+    assert world.forces == [spring] and world.contact_generators == [ground]
+
+
+def test_a_generator_whose_particle_was_dropped_by_restore_fails_clearly():
+    """After ``restore`` drops a particle, a spring to it would read a stale row beyond
+    ``count`` and pull on nothing: the next step names the generator instead."""
+    world = pm.World(gravity=(0, 0, 0))
+    a = world.add_particle()
+    snap = world.particles.snapshot()
+    b = world.add_particle((2, 0, 0))
+    world.add(pm.Spring(a, b, 10.0, 1.0))
+    world.step(DT)
+    world.particles.restore(snap)
+    with pytest.raises(IndexError, match="Spring refers to a particle that no longer exists"):
+        world.step(DT)
+    world.particles.restore(world.particles.snapshot())  # still one particle: still refused
+    world.add_particle((2, 0, 0))  # the row exists again: the world steps
+    world.step(DT)
