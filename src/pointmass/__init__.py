@@ -15,6 +15,7 @@ The core imports only numpy and numba; rendering and windows load only when aske
     >>> stats = world.step(1 / 60)
 """
 
+from . import stability
 from .collide import Box, Ground, Plane, SphereCollisions
 from .contacts import ContactBuffer, ContactGenerator
 from .forces import Buoyancy, CustomForce, Drag, ForceGenerator, Gravity
@@ -23,6 +24,7 @@ from .params import choice, tweak
 from .particles import Particle, Particles
 from .scene import BoxVisual, CameraHint, PlaneVisual, Scene
 from .springs import AnchoredBungee, AnchoredSpring, Bungee, FakeSpring, Spring
+from .stability import UnstableStepError
 from .world import StepStats, World
 
 __version__ = "0.1.0"
@@ -44,5 +46,5 @@ __all__ = [
     "Bungee", "Buoyancy", "Cable", "CameraHint", "ContactBuffer", "ContactGenerator",
     "CustomForce", "Drag", "FakeSpring", "ForceGenerator", "Gravity", "Ground", "Particle",
     "Particles", "Plane", "PlaneVisual", "Rod", "Scene", "SphereCollisions", "Spring",
-    "StepStats", "World", "choice", "show", "tweak",
+    "StepStats", "UnstableStepError", "World", "choice", "show", "stability", "tweak",
 ]

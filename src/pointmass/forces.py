@@ -25,6 +25,10 @@ class ForceGenerator:
 
     #: Drawing hint for renderers: "spring", "bungee" or None (not drawn as lines).
     kind: str | None = None
+    #: True when the forces cannot jump by orders of magnitude within a step, or the generator
+    #: checks its own stability. Otherwise (user code) the world checks the velocity change
+    #: each step before integrating (``stability.jump_check``).
+    bounded: bool = False
 
     def apply(self, particles: Particles, dt: float) -> None:
         raise NotImplementedError
@@ -86,6 +90,8 @@ class Gravity(ForceGenerator):
         particles: Indices to act on, or None for all.
     """
 
+    bounded = True
+
     def __init__(self, g=(0.0, -9.81, 0.0), particles=None) -> None:
         self.g = check.vec3(g, "g")
         self._sel = _Selection(particles)
@@ -142,13 +148,21 @@ class Drag(ForceGenerator):
         particles: Indices to act on, or None for all.
     """
 
+    bounded = True
+
     def __init__(self, k1: float = 0.1, k2: float = 0.1, particles=None) -> None:
         self.k1 = k1
         self.k2 = k2
         self._sel = _Selection(particles)
 
-    k1 = property(lambda self: self._k1, lambda self, v: setattr(
-        self, "_k1", check.scalar(v, "k1", low=0.0)), doc="Linear drag coefficient [N·s/m].")
+    @property
+    def k1(self) -> float:
+        """Linear drag coefficient [N·s/m]."""
+        return self._k1
+
+    @k1.setter
+    def k1(self, value) -> None:
+        self._k1 = check.scalar(value, "k1", low=0.0)
     k2 = property(lambda self: self._k2, lambda self, v: setattr(
         self, "_k2", check.scalar(v, "k2", low=0.0)), doc="Quadratic drag coefficient [N·s²/m²].")
 
@@ -195,6 +209,8 @@ class Buoyancy(ForceGenerator):
         gravity: Magnitude of gravity g [m/s²], ≥ 0.
         particles: Indices to act on, or None for all.
     """
+
+    bounded = True
 
     def __init__(self, max_depth: float, volume: float, water_height: float = 0.0,
                  liquid_density: float = 1000.0, gravity: float = 9.81, particles=None) -> None:

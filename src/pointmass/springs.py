@@ -16,13 +16,20 @@ from numba import njit
 from . import _validate as check
 from .forces import ForceGenerator, _Selection
 from .particles import Particles
+from .stability import spring_too_stiff
 
 
 @njit(cache=True)
-def _spring_kernel(pos, vel, force, a, b, k, rest, damping, pull_only):
+def _spring_kernel(pos, vel, force, inv_mass, a, b, k, rest, damping, pull_only, h):
+    """Add every spring's force; return the first spring too stiff for a step of h (its
+    h²·ω² + 2·h·γ ≥ 4, see stability.py), or -1. Checked as the forces are added: no extra pass."""
+    unstable = -1
     for s in range(a.shape[0]):
         i = a[s]
         j = b[s]
+        w = inv_mass[i] + inv_mass[j]
+        if unstable < 0 and (h * h * k[s] + 2.0 * h * damping[s]) * w >= 4.0:
+            unstable = s
         dx = pos[i, 0] - pos[j, 0]
         dy = pos[i, 1] - pos[j, 1]
         dz = pos[i, 2] - pos[j, 2]
@@ -44,12 +51,17 @@ def _spring_kernel(pos, vel, force, a, b, k, rest, damping, pull_only):
         force[j, 0] -= f * dx
         force[j, 1] -= f * dy
         force[j, 2] -= f * dz
+    return unstable
 
 
 @njit(cache=True)
-def _anchored_kernel(pos, vel, force, idx, anchor, k, rest, damping, pull_only):
+def _anchored_kernel(pos, vel, force, inv_mass, idx, anchor, k, rest, damping, pull_only, h):
+    """As ``_spring_kernel``, the other end fixed at ``anchor[s]``."""
+    unstable = -1
     for s in range(idx.shape[0]):
         i = idx[s]
+        if unstable < 0 and (h * h * k[s] + 2.0 * h * damping[s]) * inv_mass[i] >= 4.0:
+            unstable = s
         dx = pos[i, 0] - anchor[s, 0]
         dy = pos[i, 1] - anchor[s, 1]
         dz = pos[i, 2] - anchor[s, 2]
@@ -66,12 +78,14 @@ def _anchored_kernel(pos, vel, force, idx, anchor, k, rest, damping, pull_only):
         force[i, 0] += f * dx
         force[i, 1] += f * dy
         force[i, 2] += f * dz
+    return unstable
 
 
 class _SpringSet(ForceGenerator):
     """Shared storage of spring constants, rest lengths and damping, one per spring."""
 
     _pull_only = False
+    bounded = True  # checks its own stability as it runs (stability.py)
 
     def _init_params(self, count: int, spring_constant, rest_length, damping) -> None:
         self._count = count
@@ -150,8 +164,14 @@ class Spring(_SpringSet):
             raise ValueError(f"a spring joins particle {int(self.a[same][0])} to itself")
 
     def apply(self, particles: Particles, dt: float) -> None:
-        _spring_kernel(particles.position, particles.velocity, particles.force, self.a, self.b,
-                       self._k, self._rest, self._damping, self._pull_only)
+        s = _spring_kernel(particles.position, particles.velocity, particles.force,
+                           particles.inv_mass, self.a, self.b, self._k, self._rest,
+                           self._damping, self._pull_only, float(dt))
+        if s >= 0:
+            a, b = int(self.a[s]), int(self.b[s])
+            w = float(particles.inv_mass[a] + particles.inv_mass[b])
+            raise spring_too_stiff(self, s, f"particles {a}–{b}", float(self._k[s]),
+                                   float(self._damping[s]), w, dt)
 
     def lengths(self, particles: Particles) -> np.ndarray:
         """Current lengths [m], shape (K,)."""
@@ -203,9 +223,14 @@ class AnchoredSpring(_SpringSet):
         self._sel.validate(particles)
 
     def apply(self, particles: Particles, dt: float) -> None:
-        _anchored_kernel(particles.position, particles.velocity, particles.force,
-                         self._sel.indices(particles), self.anchor, self._k, self._rest,
-                         self._damping, self._pull_only)
+        idx = self._sel.indices(particles)
+        s = _anchored_kernel(particles.position, particles.velocity, particles.force,
+                             particles.inv_mass, idx, self.anchor, self._k, self._rest,
+                             self._damping, self._pull_only, float(dt))
+        if s >= 0:
+            i = int(idx[s])
+            raise spring_too_stiff(self, s, f"particle {i} to its anchor", float(self._k[s]),
+                                   float(self._damping[s]), float(particles.inv_mass[i]), dt)
 
     def lengths(self, particles: Particles) -> np.ndarray:
         return np.linalg.norm(particles.position[self._sel.indices(particles)] - self.anchor,
@@ -294,6 +319,8 @@ class FakeSpring(ForceGenerator):
         spring_constant: k [1/s²], ≥ 0.
         damping: d [1/s], ≥ 0.
     """
+
+    bounded = True  # integrated exactly: stable at any dt
 
     kind = "spring"
 

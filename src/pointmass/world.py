@@ -13,6 +13,7 @@ from .contacts import ContactBuffer, ContactGenerator
 from .forces import ForceGenerator
 from .particles import Particles
 from .resolver import RESOLVER_MODES, resolve_contacts
+from .stability import jump_check, needs_jump_check
 
 #: Extra rounds of link (rod, cable) contacts per substep, after the main resolution.
 LINK_ROUNDS = 4
@@ -137,6 +138,7 @@ class World:
         self.time = 0.0
         #: The particle count that every generator was last validated against.
         self._checked_count = 0
+        self._jump_check = False
 
     # -- settings, checked on assignment --------------------------------------------------------
     @property
@@ -252,15 +254,33 @@ class World:
             raise ValueError(f"dt must be a finite number of seconds > 0, got {dt!r}")
         self._check_references()
         h = float(dt) / self._substeps
+        # Blow-ups are caught before anything moves (stability.py: springs check their
+        # stiffness against the step, user forces the velocity change they would cause), so
+        # the world stays as it was and the user can go on with a smaller dt. With substeps,
+        # the earlier substeps are undone from a copy.
+        self._jump_check = needs_jump_check(self.forces)
+        saved = (self.particles.snapshot(), self.time) if self._substeps > 1 else None
         iterations = 0
-        for _ in range(self._substeps):
-            used, mode = self._substep(h)
-            iterations += used
+        try:
+            for _ in range(self._substeps):
+                used, mode = self._substep(h)
+                iterations += used
+        except FloatingPointError:
+            if saved is not None:  # a later substep blew up: undo the earlier ones
+                self.particles.restore(saved[0])
+                self.time = saved[1]
+            raise
         self.time += float(dt)
         pen = self.contacts.penetration
+        energy = self.particles.kinetic_energy()
+        if not math.isfinite(energy):
+            raise FloatingPointError(
+                f"the kinetic energy overflowed ({energy}) at t = {self.time:.6g} s: a velocity "
+                f"is too large to square (largest |v| = "
+                f"{float(np.abs(self.particles.velocity).max()):.3g} m/s)")
         return StepStats(contacts=self.contacts.count, iterations=iterations,
                          max_penetration=float(pen.max()) if pen.size and pen.max() > 0 else 0.0,
-                         kinetic_energy=self.particles.kinetic_energy(), mode=mode)
+                         kinetic_energy=energy, mode=mode)
 
     def _substep(self, dt: float) -> tuple[int, str]:
         p = self.particles
@@ -271,6 +291,8 @@ class World:
         # Let every force generator add its forces.
         for generator in self.forces:
             generator.apply(p, dt)
+        if self._jump_check:  # user forces: refuse a step that would throw a particle
+            jump_check(self.forces, p, self._gravity, dt)
 
         # Integrate: v += a·dt, then p += v·dt (semi-implicit Euler, the cookbook's order).
         integrate = _integrate_parallel if p.count >= PARALLEL_MIN_PARTICLES else _integrate

@@ -120,16 +120,71 @@ def test_other_settings_are_checked():
         pm.World(gravity=(0, math.nan, 0))
 
 
-def test_blow_up_raises_floating_point_error_naming_the_particle():
-    """Raise FloatingPointError from step, naming the particle, instead of a silent NaN."""
+def test_a_spring_too_stiff_for_dt_is_refused_before_it_moves_anything():
+    """k = 1e7 between 1 kg particles at 60 Hz threw them 1e6 m in one step and failed 41
+    steps later with NaN everywhere. Now the first step refuses, names the generator and the
+    remedies, and leaves the world exactly as it was; with the suggested substeps it runs."""
     world = pm.World(gravity=(0, 0, 0))
-    world.add_particle(position=(0, 0, 0), mass=math.inf)
-    loose = world.add_particle(position=(0.5, 0, 0), mass=1e-3)
-    world.add(pm.Spring(0, loose, spring_constant=1e200, rest_length=1.0))
-    with pytest.raises(FloatingPointError, match=f"particle {loose} became non-finite"):
-        with np.errstate(all="ignore"):
-            for _ in range(100):
+    a, b = world.add_particles([(0, 0, 0), (1.5, 0, 0)])
+    world.add(pm.Spring(a, b, spring_constant=1e7, rest_length=1.0))
+    before = world.particles.snapshot()
+    with pytest.raises(pm.UnstableStepError, match=r"Spring spring 0 \(particles 0–1\) is too "
+                       r"stiff for dt.*World\(substeps=75\).*FakeSpring.*unchanged"):
+        world.step(DT)
+    after = world.particles.snapshot()
+    # Everything but the force accumulator, which every step clears and rebuilds.
+    assert all(np.array_equal(before[k], after[k]) for k in before if k != "force")
+    assert world.time == 0.0
+    world.substeps = 75
+    for _ in range(60):
+        world.step(DT)
+    assert np.isfinite(world.particles.position).all()
+    assert abs(np.linalg.norm(world.particles.position[a] - world.particles.position[b])
+               - 1.0) < 0.6
+
+
+def test_the_stability_bound_is_the_exact_one_for_a_damped_oscillator():
+    """Semi-implicit Euler on x'' = -ω²x - γx' is stable iff h²ω² + 2hγ < 4: just below the
+    bound the amplitude stays bounded for 10 000 steps, and just above the guard refuses."""
+    k, c, m = 50.0, 0.4, 0.038
+    h_max = pm.stability.largest_stable_step(k / m, c / m)
+    world = pm.World(gravity=(0, 0, 0))
+    p = world.add_particle((0, -1.2, 0), mass=m)
+    world.add(pm.AnchoredSpring(p, (0, 0, 0), spring_constant=k, rest_length=1.0, damping=c))
+    for _ in range(10_000):
+        world.step(0.999 * h_max)
+    assert np.abs(world.particles.position[p]).max() < 1.3
+    with pytest.raises(pm.UnstableStepError,
+                       match=r"AnchoredSpring spring 0 \(particle 0 to its anchor\) is too stiff"):
+        world.step(1.001 * h_max)
+
+
+def test_a_user_force_that_would_throw_a_particle_is_refused_naming_it():
+    """A CustomForce of 1e9 N on 1 kg: refused before the particle moves, naming CustomForce;
+    with substeps the earlier substeps are undone too."""
+    for substeps in (1, 4):
+        world = pm.World(substeps=substeps)
+        p = world.add_particle((0, 1, 0), velocity=(0, 3, 0))
+        world.add(pm.CustomForce(lambda q: (0, 1e9 if q.position[1] > 1.02 else 0, 0)))
+        before = world.particles.snapshot()
+        with pytest.raises(pm.UnstableStepError, match="comes from CustomForce"):
+            for _ in range(10):
+                before, t = world.particles.snapshot(), world.time
                 world.step(DT)
+        after = world.particles.snapshot()
+        # Everything but the force accumulator, which every step clears and rebuilds.
+        assert all(np.array_equal(before[k], after[k]) for k in before if k != "force")
+        assert world.time == t
+        assert world.particles.position[p, 1] < 1.1
+
+
+def test_a_kinetic_energy_that_overflows_raises():
+    """|v| = 1e200 is finite but its square is not: the step says so instead of reporting
+    kinetic_energy = inf."""
+    world = pm.World(gravity=(0, 0, 0))
+    world.add_particle(velocity=(1e200, 0, 0))
+    with pytest.raises(FloatingPointError, match="kinetic energy overflowed"):
+        world.step(DT)
 
 
 def test_custom_force_returning_nan_is_refused():
