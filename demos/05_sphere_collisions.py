@@ -43,7 +43,7 @@ def launch(scene: Scene, p: Params) -> None:
 
 
 def build(p: Params) -> Scene:
-    world = World(gravity=(0.0, 0.0, 0.0), restitution_threshold=0.0)
+    world = World(gravity=(0.0, 0.0, 0.0))
     world.add_particles(np.zeros((4, 3)), masses=MASSES, radii=RADIUS)
     collisions = world.add(SphereCollisions(restitution=p.restitution))
     colors = np.array([(0.9, 0.3, 0.25), (0.25, 0.55, 0.9), (0.95, 0.75, 0.2), (0.35, 0.75, 0.4)])

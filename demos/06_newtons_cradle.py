@@ -1,10 +1,10 @@
 """Newton's cradle: five touching spheres on strings; lift one and momentum passes through.
 
 Each ball hangs from a fixed anchor by a rod (a string that stays taut) and touches its
-neighbours. The book's worst-first resolver handles the impact one contact at a time, each time
-with the velocities left by the last: the first ball stops, the next takes its speed, and so on
-down the row until the last ball swings out. (A simultaneous solver would share the momentum
-among all five instead; the world is forced to worst-first for that reason.)
+neighbours. The solver's impact stage handles the impact one contact at a time, each time with
+the velocities left by the last (the book's sequential propagation): the first ball stops, the
+next takes its speed, and so on down the row until the last ball swings out. (A simultaneous
+solver would share the momentum among all five instead.) The world uses the defaults.
 
 Keys: none beyond the viewer's.   Run: pointmass run newtons_cradle --set lifted=2
 """
@@ -33,7 +33,7 @@ class Params:
 
 
 def build(p: Params) -> Scene:
-    world = World(gravity=(0.0, -9.81, 0.0), resolver="worst-first", restitution_threshold=0.0)
+    world = World(gravity=(0.0, -9.81, 0.0))
     xs = (np.arange(COUNT) - (COUNT - 1) / 2) * 2.0 * RADIUS
     anchors = np.column_stack([xs, np.full(COUNT, TOP), np.zeros(COUNT)])
     positions = anchors - (0.0, LENGTH, 0.0)

@@ -19,7 +19,6 @@ the Coulomb coefficient written into each contact it reports (see ``resolver.py`
 
 from __future__ import annotations
 
-import itertools
 import math
 
 import numpy as np
@@ -28,16 +27,13 @@ from numba import njit
 from . import _validate as check
 from .contacts import ContactBuffer, ContactGenerator, friction_value, restitution_value
 from .forces import _Selection
+from .keys import pair_key, plane_key_base
 from .particles import Particles
 
 #: Default contact margin, as a fraction of each particle's radius (see the module docstring).
 DEFAULT_MARGIN_FRACTION = 0.05
 
 
-#: Contact keys (see ``ContactBuffer.key``): a sphere pair is i·2³¹ + j; a plane contact sets
-#: bit 62 and holds the plane's serial number and the particle.
-_PLANE_KEY_BIT = 1 << 62
-_plane_serials = itertools.count()
 
 
 def _margin_value(value) -> float | None:
@@ -89,8 +85,6 @@ class Plane(ContactGenerator):
         friction: Coulomb friction coefficient μ ≥ 0 (0: frictionless).
     """
 
-    refresh = True
-
     def __init__(self, normal=(0.0, 1.0, 0.0), offset: float = 0.0, *, restitution: float = 0.5,
                  particles=None, margin: float | None = None, friction: float = 0.0) -> None:
         n = check.vec3(normal, "normal")
@@ -103,7 +97,7 @@ class Plane(ContactGenerator):
         self.friction = friction
         self.margin = _margin_value(margin)
         self._sel = _Selection(particles)
-        self._key_base = _PLANE_KEY_BIT | ((next(_plane_serials) & 0x7FFFFFFF) << 31)
+        self._key_base = plane_key_base()
 
     restitution = property(lambda self: self._restitution, lambda self, v: setattr(
         self, "_restitution", restitution_value(v)), doc="Coefficient of restitution [0, 1].")
@@ -154,8 +148,6 @@ class Box(ContactGenerator):
         margin: Contact margin [m], as for ``Plane``.
         friction: Coulomb friction coefficient μ ≥ 0 of every face (0: frictionless).
     """
-
-    refresh = True
 
     def __init__(self, low=(-5.0, 0.0, -5.0), high=(5.0, 10.0, 5.0), *,
                  restitution: float = 0.5, ceiling: bool = False, particles=None,
@@ -308,7 +300,7 @@ def _sphere_pairs(pos, radius, inv_mass, idx, cell_size, restitution, margin, ma
                                 out_n[count, 2] = 0.0
                             out_pen[count] = reach - dist
                             out_rest[count] = restitution
-                            out_key[count] = (i << 31) | j
+                            out_key[count] = pair_key(i, j)
                         count += 1
         # Sort this particle's few contacts by key, so the keys come out sorted (the warm
         # start then matches them against the previous step's in linear time).
@@ -340,7 +332,7 @@ class SphereCollisions(ContactGenerator):
         self.friction = friction
         self.margin = _margin_value(margin)
         self._sel = _Selection(particles)
-        self._key_base = _PLANE_KEY_BIT | ((next(_plane_serials) & 0x7FFFFFFF) << 31)
+        self._key_base = plane_key_base()
 
     restitution = property(lambda self: self._restitution, lambda self, v: setattr(
         self, "_restitution", restitution_value(v)), doc="Coefficient of restitution [0, 1].")

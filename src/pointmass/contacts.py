@@ -29,15 +29,15 @@ class ContactBuffer:
         penetration: Overlap depth [m], shape (M,).
         restitution: Coefficient of restitution in [0, 1], shape (M,).
         friction: Coulomb friction coefficient μ ≥ 0, shape (M,); 0 (the default) for none.
-        key: Identity of the contact across steps, shape (M,), int64; -1 for none. The sweep
-            resolver warm-starts a contact with the impulse that the contact with the same key
-            needed in the previous step (see ``resolver.py``).
+        bilateral: True for a two-way constraint (a rod): its impulse may pull as well as push
+            and its depth may be negative (too short) as well as positive, shape (M,), bool.
+        key: Identity of the contact across steps, shape (M,), int64; -1 for none. The solver
+            warm-starts a contact with the impulse that the contact with the same key needed in
+            the previous step (``pointmass.keys`` builds them, ``solver/history.py`` keeps them).
     """
 
     def __init__(self, capacity: int = 64) -> None:
         self.count = 0
-        # (sorted keys, normal impulses (K,), tangential impulses (K, 3) or None if all zero)
-        self._warm: tuple[np.ndarray, np.ndarray, np.ndarray | None] | None = None
         self._alloc(max(int(capacity), 1))
 
     def _alloc(self, capacity: int) -> None:
@@ -50,7 +50,9 @@ class ContactBuffer:
         rest = np.zeros(capacity)
         key = np.full(capacity, -1, np.int64)
         friction = np.zeros(capacity)
+        bilateral = np.zeros(capacity, np.bool_)
         if old is not None:
+            bilateral[:n] = self._bilateral[:n]
             key[:n] = self._key[:n]
             friction[:n] = self._friction[:n]
             a[:n], b[:n] = self._a[:n], self._b[:n]
@@ -59,6 +61,7 @@ class ContactBuffer:
         self._a, self._b, self._normal = a, b, normal
         self._penetration, self._restitution, self._key = pen, rest, key
         self._friction = friction
+        self._bilateral = bilateral
         self.capacity = capacity
 
     def reserve(self, extra: int) -> None:
@@ -71,12 +74,8 @@ class ContactBuffer:
         # Zero the friction of the old rows: a compiled generator that writes through ``raw()``
         # and knows nothing of friction then leaves frictionless contacts, not stale ones.
         self._friction[: self.count] = 0.0
+        self._bilateral[: self.count] = False
         self.count = 0
-
-    def clear_history(self) -> None:
-        """Forget the impulses kept for warm starting (after restoring a particle snapshot, so a
-        replay is bit-identical to the first run)."""
-        self._warm = None
 
     def __len__(self) -> int:
         return self.count
@@ -88,11 +87,14 @@ class ContactBuffer:
     restitution = property(lambda self: self._restitution[: self.count])
     key = property(lambda self: self._key[: self.count])
     friction = property(lambda self: self._friction[: self.count])
+    bilateral = property(lambda self: self._bilateral[: self.count])
 
-    def add(self, a, b, normal, penetration, restitution, key=-1, *, friction=0.0) -> None:
+    def add(self, a, b, normal, penetration, restitution, key=-1, *, friction=0.0,
+            bilateral=False) -> None:
         """Append contacts; each argument is one value or an array of length K (broadcast).
         ``key`` identifies a contact across steps (-1: none, no warm start); ``friction`` is the
-        Coulomb coefficient μ ≥ 0 (0: frictionless)."""
+        Coulomb coefficient μ ≥ 0 (0: frictionless); ``bilateral`` makes a two-way constraint
+        (a rod: held at depth 0 from both sides)."""
         a = np.atleast_1d(np.asarray(a, np.int64))
         k = a.shape[0]
         if k == 0:
@@ -110,6 +112,7 @@ class ContactBuffer:
         self._restitution[s] = restitution
         self._key[s] = key
         self._friction[s] = friction
+        self._bilateral[s] = bilateral
         self.count += k
 
     def raw(self) -> tuple[np.ndarray, ...]:
@@ -135,9 +138,6 @@ class ContactGenerator:
 
     #: Drawing hint for renderers: "cable", "rod" or None (not drawn as lines).
     kind: str | None = None
-    #: True for cheap generators whose contacts the world finds again in its extra link rounds
-    #: (links, planes): a rod that projects a particle may push it back into the ground.
-    refresh: bool = False
 
     def generate(self, particles: Particles, contacts: ContactBuffer) -> None:
         raise NotImplementedError

@@ -7,39 +7,31 @@ versions tie a particle to a fixed point (the contact's second body is scenery, 
 
 One object holds many links (index arrays), like the springs.
 
-A rod at its exact length makes no contact (within ``ROD_TOLERANCE``), so when the resolver
-projects one rod of a chain it may stretch its neighbour after the contacts were made; the world
-therefore regenerates and resolves link contacts for a few extra rounds each step
-(``world.LINK_ROUNDS``). Link contacts carry keys, so the sweep resolver warm-starts a link that
-stays taut.
+A rod reports one *bilateral* contact every step, with its signed error as depth (positive when
+too long, negative when too short): its impulse may pull or push, so it holds the rod both ways,
+and it carries a key, so the solver warm-starts a loaded rod from last step's impulse (a rod
+that reported nothing at its exact length lost its impulse every other step, and a heavy chain
+sagged). A cable reports a
+contact once it is within ``CABLE_MARGIN`` of taut (a speculative contact that acts only if it
+would go taut within the step), so a taut cable keeps its warm start too.
 """
 
 from __future__ import annotations
-
-import itertools
 
 import numpy as np
 
 from . import _validate as check
 from .contacts import ContactBuffer, ContactGenerator, restitution_value
+from .keys import link_key_base
 from .particles import Particles
 
-#: Rods within this fraction of their length count as exact (Cyclone compares floats with ==,
-#: so it makes a contact almost every step).
-ROD_TOLERANCE = 1e-9
+#: A cable reports a (speculative) contact once slack by less than this fraction of its length.
+CABLE_MARGIN = 0.01
 
-#: Contact keys (see ``ContactBuffer.key``): bit 61, the link set's serial number, the direction
-#: (bit 30: a rod pushing) and the link's position in its set; so the sweep resolver warm-starts
-#: a link that stays taut from the impulse it needed in the previous step.
-_LINK_KEY_BIT = 1 << 61
-_PUSH_BIT = 1 << 30
-_link_serials = itertools.count()
 
 
 class _Links(ContactGenerator):
     """Pairs a[k]–b[k] (b may be an anchor) with one length each."""
-
-    refresh = True
 
     def _init_pairs(self, a, b, lengths, name: str) -> None:
         self._a_given = np.atleast_1d(np.asarray(a))
@@ -51,7 +43,7 @@ class _Links(ContactGenerator):
         self.b = self._b_given.astype(np.int64)
         self._name = name
         self.lengths_target = lengths
-        self._key_base = _new_key_base()
+        self._key_base = link_key_base()
 
     @property
     def lengths_target(self) -> np.ndarray:
@@ -82,10 +74,6 @@ class _Links(ContactGenerator):
         pa, pb = self._ends(particles)
         length = np.linalg.norm(pb - pa, axis=1)
         return pa, pb, (length - self._len) / self._len
-
-
-def _new_key_base() -> int:
-    return _LINK_KEY_BIT | ((next(_link_serials) & 0x3FFFFFFF) << 31)
 
 
 def _unit(vectors: np.ndarray, length: np.ndarray) -> np.ndarray:
@@ -121,7 +109,7 @@ class Cable(_Links):
         pa, pb = self._ends(particles)
         d = pb - pa
         length = np.linalg.norm(d, axis=1)
-        over = length > self._len
+        over = length > self._len * (1.0 - CABLE_MARGIN)
         if not over.any():
             return
         # The normal points from b to a's target: a must move toward b.
@@ -155,16 +143,9 @@ class Rod(_Links):
         d = pb - pa
         length = np.linalg.norm(d, axis=1)
         error = length - self._len
-        act = np.abs(error) > ROD_TOLERANCE * self._len
-        if not act.any():
-            return
-        toward_b = _unit(d[act], length[act])
-        # Too long: a moves toward b; too short: a moves away from b.
-        pulling = error[act] > 0
-        sign = np.where(pulling, 1.0, -1.0)
-        keys = self._key_base | np.flatnonzero(act) | np.where(pulling, 0, _PUSH_BIT)
-        contacts.add(self.a[act], self._b_index()[act], toward_b * sign[:, None],
-                     np.abs(error[act]), 0.0, keys)
+        # The normal points from b toward a's target: a moves toward b when the rod is too long.
+        contacts.add(self.a, self._b_index(), _unit(d, length), error, 0.0,
+                     self._key_base | np.arange(self.a.shape[0]), bilateral=True)
 
     def _b_index(self) -> np.ndarray:
         return self.b
@@ -179,7 +160,7 @@ class _Anchored:
         self.anchor = check.vec3_array(anchor, "anchor", self.a.shape[0]).copy()
         self._name = name
         self.lengths_target = lengths
-        self._key_base = _new_key_base()
+        self._key_base = link_key_base()
 
     def validate(self, particles: Particles) -> None:
         self.a = particles.check_indices(self._a_given, "particles")

@@ -12,11 +12,8 @@ from . import _validate as check
 from .contacts import ContactBuffer, ContactGenerator
 from .forces import ForceGenerator
 from .particles import Particles
-from .resolver import RESOLVER_MODES, resolve_contacts
+from .solver import ImpulseHistory, Solver, SolveStats
 from .stability import jump_check, needs_jump_check
-
-#: Extra rounds of link (rod, cable) contacts per substep, after the main resolution.
-LINK_ROUNDS = 4
 
 
 @dataclass(frozen=True)
@@ -26,11 +23,12 @@ class StepStats:
     Attributes:
         contacts: Contacts generated in the last substep, including speculative ones (a gap
             within the collision margin, negative penetration).
-        iterations: Single-contact resolutions the resolver performed (all substeps, link
-            rounds included).
+        iterations: Single-contact resolutions the solver performed (all substeps).
         max_penetration: Largest overlap left after resolving [m] (0 when none).
         kinetic_energy: Total kinetic energy after the step [J].
-        mode: The resolver mode used in the last substep ("worst-first" or "sweep").
+        mode: The solver mode ("sequential" or "worst-first").
+        velocity_passes: Velocity passes of the solver (all substeps; see ``pointmass.solver``).
+        position_passes: Projection passes (all substeps).
     """
 
     contacts: int
@@ -38,6 +36,8 @@ class StepStats:
     max_penetration: float
     kinetic_energy: float
     mode: str
+    velocity_passes: int = 0
+    position_passes: int = 0
 
 
 #: Below this many particles the integration runs on one core: starting threads costs more
@@ -101,15 +101,14 @@ class World:
 
     Args:
         gravity: World-wide gravitational acceleration [m/s²] applied to every movable particle.
-        iterations: Resolver budget per substep; None means 2 × contacts (the book's choice)
-            for worst-first, and at most 10 velocity passes for sweep (it stops once converged).
-        resolver: "auto", "worst-first" or "sweep". "auto" uses the warm-started sweep when
-            there are more than ``sweep_threshold`` contacts or any keyed contact (collisions,
-            links: stacks need the warm start to rest), else the book's worst-first (a few
-            contacts from custom generators).
-        sweep_threshold: With "auto", the contact count above which sweep mode is used.
-        restitution_threshold: Closing speeds below this [m/s] do not bounce (restitution 0), so
-            piles come to rest; 0 turns it off.
+        iterations: Cap on the solver's velocity passes per substep (None: automatic; the
+            passes stop once converged), or on single-contact resolutions for "worst-first"
+            (None: 2 × contacts, the book's choice).
+        resolver: "sequential" (the default: impacts by sequential propagation, then
+            warm-started sequential impulses; "auto" and "sweep" are older names for it) or
+            "worst-first" (the book's loop). See ``pointmass.solver``.
+        restitution_threshold: Closing speeds below this [m/s] do not bounce. 0 by default:
+            the resting-contact trick keeps piles still without hiding any inelasticity.
         substeps: Substeps per ``step``; each runs the whole pipeline with dt / substeps.
 
     Example:
@@ -122,17 +121,19 @@ class World:
     """
 
     def __init__(self, gravity=(0.0, -9.81, 0.0), *, iterations: int | None = None,
-                 resolver: str = "auto", sweep_threshold: int = 256,
-                 restitution_threshold: float = 0.25, substeps: int = 1) -> None:
+                 resolver: str = "sequential", restitution_threshold: float = 0.0,
+                 substeps: int = 1) -> None:
         self.particles = Particles()
         self.forces: list[ForceGenerator] = []
         self.contact_generators: list[ContactGenerator] = []
         self.contacts = ContactBuffer()
-        self._link_contacts = ContactBuffer()
+        self.solver = Solver()
+        #: What each keyed contact needed last step (the solver's warm start); clear it after
+        #: restoring a snapshot so a replay is bit-identical.
+        self.impulses = ImpulseHistory()
         self.gravity = gravity
         self.iterations = iterations
         self.resolver = resolver
-        self.sweep_threshold = sweep_threshold
         self.restitution_threshold = restitution_threshold
         self.substeps = substeps
         self.time = 0.0
@@ -152,24 +153,24 @@ class World:
 
     @property
     def iterations(self) -> int | None:
-        return self._iterations
+        """The solver's cap on passes (see ``Solver.max_passes``); None: automatic."""
+        return self.solver.max_passes
 
     @iterations.setter
     def iterations(self, value: int | None) -> None:
         if value is not None and (isinstance(value, bool) or not isinstance(value, int)
-                                  or value < 0):
-            raise ValueError(f"iterations must be None (automatic) or an int >= 0, got {value!r}")
-        self._iterations = value
+                                  or value < 1):
+            raise ValueError(f"iterations must be None (automatic) or an int >= 1, got {value!r}")
+        self.solver.max_passes = value
 
     @property
     def resolver(self) -> str:
-        return self._resolver
+        """The solver's mode: "sequential" (default) or "worst-first"."""
+        return self.solver.mode
 
     @resolver.setter
     def resolver(self, value: str) -> None:
-        if value not in ("auto", *RESOLVER_MODES):
-            raise ValueError(f"resolver must be 'auto', 'worst-first' or 'sweep', got {value!r}")
-        self._resolver = value
+        self.solver.mode = value
 
     @property
     def substeps(self) -> int:
@@ -183,11 +184,12 @@ class World:
 
     @property
     def restitution_threshold(self) -> float:
-        return self._restitution_threshold
+        return self.solver.restitution_threshold
 
     @restitution_threshold.setter
     def restitution_threshold(self, value: float) -> None:
-        self._restitution_threshold = check.scalar(value, "restitution_threshold", low=0.0)
+        self.solver.restitution_threshold = check.scalar(value, "restitution_threshold",
+                                                         low=0.0)
 
     # -- building --------------------------------------------------------------------------------
     def add_particle(self, position=(0.0, 0.0, 0.0), velocity=(0.0, 0.0, 0.0), *,
@@ -260,11 +262,13 @@ class World:
         # the earlier substeps are undone from a copy.
         self._jump_check = needs_jump_check(self.forces)
         saved = (self.particles.snapshot(), self.time) if self._substeps > 1 else None
-        iterations = 0
+        iterations = velocity_passes = position_passes = 0
         try:
             for _ in range(self._substeps):
-                used, mode = self._substep(h)
-                iterations += used
+                solved = self._substep(h)
+                iterations += solved.resolutions
+                velocity_passes += solved.velocity_passes
+                position_passes += solved.position_passes
         except FloatingPointError:
             if saved is not None:  # a later substep blew up: undo the earlier ones
                 self.particles.restore(saved[0])
@@ -280,9 +284,10 @@ class World:
                 f"{float(np.abs(self.particles.velocity).max()):.3g} m/s)")
         return StepStats(contacts=self.contacts.count, iterations=iterations,
                          max_penetration=float(pen.max()) if pen.size and pen.max() > 0 else 0.0,
-                         kinetic_energy=energy, mode=mode)
+                         kinetic_energy=energy, mode=self.solver.mode,
+                         velocity_passes=velocity_passes, position_passes=position_passes)
 
-    def _substep(self, dt: float) -> tuple[int, str]:
+    def _substep(self, dt: float) -> SolveStats:
         p = self.particles
 
         # Clear the force accumulators: forces are rebuilt from scratch every step.
@@ -309,36 +314,8 @@ class World:
         for generator in self.contact_generators:
             generator.generate(p, self.contacts)
 
-        # Resolve them: velocities (restitution, resting contacts), then interpenetration.
-        mode = self._resolver
-        if mode == "auto":
-            # Keyed contacts (collisions, links) need the sweep's warm start (stacks rest, rod
-            # chains hold); many contacts need its linear cost. The book's worst-first is left
-            # for a few unkeyed contacts from custom generators.
-            many = self.contacts.count > self.sweep_threshold
-            mode = "sweep" if many or bool((self.contacts.key >= 0).any()) else "worst-first"
-        used = resolve_contacts(p, self.contacts, dt, mode=mode, iterations=self._iterations,
-                                restitution_threshold=self._restitution_threshold)
-
-        # Links again: a rod at its exact length makes no contact, so projecting its neighbour
-        # may have stretched it after the contacts were made. Regenerate the cheap contacts
-        # (links and planes, so a rod cannot push a particle back into the ground) for a few
-        # rounds, until every link holds; sphere collisions are not regenerated: costly.
-        has_links = any(g.kind in ("rod", "cable") for g in self.contact_generators)
-        cheap = [g for g in self.contact_generators if g.refresh]
-        for _ in range(LINK_ROUNDS if has_links else 0):
-            self._link_contacts.clear()
-            for generator in cheap:
-                generator.generate(p, self._link_contacts)
-            if self._link_contacts.count == 0:
-                break
-            round_used = resolve_contacts(p, self._link_contacts, dt, mode=mode,
-                                          iterations=self._iterations, warm_start=False,
-                                          restitution_threshold=self._restitution_threshold)
-            used += round_used
-            if round_used == 0:
-                break  # everything already holds
-        return used, mode
+        # Resolve them: impacts, resting contacts and links, then interpenetration.
+        return self.solver.solve(p, self.contacts, self.impulses, dt)
 
     # -- measurements ---------------------------------------------------------------------------
     def kinetic_energy(self) -> float:

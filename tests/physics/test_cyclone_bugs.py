@@ -106,19 +106,28 @@ def test_resolver_leaves_no_particle_embedded_after_an_early_return():
         assert contacts.penetration[0] == pytest.approx(-pair_gap, abs=1e-12)
 
 
-def test_rod_at_exact_length_makes_no_contact_but_one_off_by_a_micron_does():
-    """Compare rod lengths with a tolerance, not float == (Cyclone: a contact every frame)."""
+def test_a_rod_is_held_both_ways_without_comparing_floats():
+    """Cyclone compares rod lengths with float == (so a contact appears or not by rounding).
+    A rod here always reports one bilateral contact with its signed error as depth: at its
+    exact length that is 0 and the solver moves nothing; a micron long, the depth is 1e-6,
+    a micron short -1e-6, and solving restores the length either way."""
     world = pm.World(gravity=(0, 0, 0))
     a = world.add_particle(position=(0, 0, 0))
     b = world.add_particle(position=(1, 0, 0))
     rod = world.add(pm.Rod(a, b, length=1.0))
     contacts = ContactBuffer()
     rod.generate(world.particles, contacts)
-    assert contacts.count == 0
-    world.particles.position[b] = (1 + 1e-6, 0, 0)
-    rod.generate(world.particles, contacts)
-    assert contacts.count == 1
-    assert contacts.penetration[0] == pytest.approx(1e-6, rel=1e-6)
+    assert contacts.count == 1 and contacts.bilateral.all() and not contacts.penetration.any()
+    world.step(DT)
+    assert world.particles.position[b].tolist() == [1.0, 0.0, 0.0]
+    for error in (1e-6, -1e-6):
+        world.particles.position[b] = world.particles.position[a] + (1 + error, 0, 0)
+        contacts.clear()
+        rod.generate(world.particles, contacts)
+        assert contacts.penetration.tolist() == pytest.approx([error], rel=1e-6)
+        world.step(DT)
+        length = np.linalg.norm(world.particles.position[b] - world.particles.position[a])
+        assert length == pytest.approx(1.0, abs=1e-12)
 
 
 def test_pinned_particle_has_no_finite_mass_and_gets_no_gravity():

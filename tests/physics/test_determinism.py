@@ -51,12 +51,12 @@ def test_snapshot_restore_replays_identically():
     for _ in range(30):
         world.step(DT)
     snap = world.particles.snapshot()
-    world.contacts.clear_history()
+    world.impulses.clear()
     for _ in range(60):
         world.step(DT)
     first = world.particles.position.copy()
     world.particles.restore(snap)
-    world.contacts.clear_history()
+    world.impulses.clear()
     for _ in range(60):
         world.step(DT)
     assert np.array_equal(world.particles.position, first)

@@ -1,4 +1,4 @@
-"""The two resolver modes, and how "auto" chooses between them."""
+"""The solver's two modes: the default ("sequential") and the book's worst-first."""
 
 from __future__ import annotations
 
@@ -19,12 +19,12 @@ def _small_pile(mode: str) -> pm.World:
     return world
 
 
-@pytest.mark.parametrize(("mode", "slack"), [("worst-first", 0.1), ("sweep", 0.02)])
+@pytest.mark.parametrize(("mode", "slack"), [("worst-first", 0.1), ("sequential", 0.02)])
 def test_both_modes_settle_a_small_pile_inside_the_box(mode, slack):
     """Settle 30 spheres in a box with either mode: inside, little overlap, losing energy.
 
     ``slack`` is the overlap allowed, as a fraction of the radius (the book's budget of
-    2 × contacts single resolutions leaves more than the converged sweep).
+    2 × contacts single resolutions leaves more than the converged default).
     """
     world = _small_pile(mode)
     energy0 = world.kinetic_energy() + world.potential_energy()
@@ -38,16 +38,16 @@ def test_both_modes_settle_a_small_pile_inside_the_box(mode, slack):
     assert world.kinetic_energy() + world.potential_energy() < energy0
 
 
-def test_sweep_rests_where_the_books_budget_does_not():
-    """Rest the pile with the sweep (warm-started) far better than 2 × contacts worst-first."""
+def test_the_default_rests_where_the_books_budget_does_not():
+    """Rest the pile with the default (warm-started) far better than worst-first's budget."""
     speeds = {}
-    for mode in ("worst-first", "sweep"):
+    for mode in ("worst-first", "sequential"):
         world = _small_pile(mode)
         for _ in range(600):
             world.step(DT)
         speeds[mode] = float(np.abs(world.particles.velocity).max())
-    assert speeds["sweep"] < 0.05
-    assert speeds["sweep"] < speeds["worst-first"]
+    assert speeds["sequential"] < 0.05
+    assert speeds["sequential"] < speeds["worst-first"]
 
 
 class _Pegs(pm.ContactGenerator):
@@ -58,26 +58,16 @@ class _Pegs(pm.ContactGenerator):
         contacts.add(below, -1, (0.0, 1.0, 0.0), -particles.position[below, 1], 0.0)
 
 
-def test_auto_picks_sweep_above_threshold_and_for_keyed_contacts():
-    """Choose worst-first for a few unkeyed contacts; sweep above sweep_threshold, or for
-    collisions and links (keyed, so warm-started)."""
-    def pegs(count: int) -> pm.World:
-        world = pm.World(sweep_threshold=10)
-        world.add_particles([(i, 0.0, 0.0) for i in range(count)])
-        world.add(_Pegs())
-        return world
-
-    stats = pegs(4).step(DT)
-    assert stats.contacts == 4 and stats.mode == "worst-first"
-    stats = pegs(12).step(DT)
-    assert stats.contacts == 12 and stats.mode == "sweep"
-    pile = pm.World(sweep_threshold=10_000)
-    pile.add_particles([(0, 0.1, 0), (0, 0.29, 0)], radii=0.1)
-    pile.add(pm.Ground())
-    pile.add(pm.SphereCollisions())
-    assert pile.step(DT).mode == "sweep"
-    chain = pm.World(sweep_threshold=10_000)
-    top = chain.add_particle((0, 5, 0), mass=np.inf)
-    end = chain.add_particle((0, 3, 0))
-    chain.add(pm.Rod(top, end, length=2.0 - 1e-3))
-    assert chain.step(DT).mode == "sweep"
+def test_one_default_for_every_kind_of_contact_and_the_old_names_still_work():
+    """No policy chooses a mode from the contact count or kind: unkeyed custom contacts,
+    collisions and links all get the default; "auto" and "sweep" name it too."""
+    world = pm.World()
+    world.add_particles([(i, -0.01, 0.0) for i in range(4)])
+    world.add(_Pegs())
+    stats = world.step(DT)
+    assert stats.contacts == 4 and stats.mode == "sequential"
+    assert (world.particles.position[:, 1] >= -1e-6).all()
+    for name in ("auto", "sweep"):
+        assert pm.World(resolver=name).resolver == "sequential"
+    with pytest.raises(ValueError, match="resolver must be 'sequential'"):
+        pm.World(resolver="fastest")

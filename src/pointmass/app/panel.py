@@ -14,7 +14,7 @@ from ..params import param_specs
 from .keymap import MOUSE_HELP
 
 PANEL_WIDTH = 360
-RESOLVERS = ("auto", "worst-first", "sweep")
+RESOLVERS = ("sequential", "worst-first")
 _OPEN = imgui.TreeNodeFlags_.default_open
 
 

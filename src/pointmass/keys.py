@@ -1,0 +1,39 @@
+"""Contact keys: the identity of a contact across steps, built in one place.
+
+The solver warm-starts a contact with the impulse the contact with the same key needed in the
+previous step (``solver/history.py``), so a key must name the same physical contact every step:
+
+- a sphere pair i < j:             i·2³¹ + j                      (bits 61 and 62 clear)
+- a particle on a plane or wall:   bit 62 | plane serial·2³¹ | i
+- a link (cable, rod):             bit 61 | link-set serial·2³¹ | link index
+
+Keys are non-negative int64; -1 means "no key" (no warm start), as custom generators report.
+"""
+
+from __future__ import annotations
+
+import itertools
+
+from numba import njit
+
+NO_KEY = -1
+_PLANE_BIT = 1 << 62
+_LINK_BIT = 1 << 61
+_SERIAL_MASK = 0x3FFFFFFF
+_serials = itertools.count()
+
+
+@njit(cache=True, inline="always")
+def pair_key(i, j):
+    """The key of the contact between particles i and j (i < j, both < 2³¹)."""
+    return (i << 31) | j
+
+
+def plane_key_base() -> int:
+    """A fresh base for one plane's contacts; OR the particle index into it."""
+    return _PLANE_BIT | ((next(_serials) & _SERIAL_MASK) << 31)
+
+
+def link_key_base() -> int:
+    """A fresh base for one set of links; OR the link's index into it."""
+    return _LINK_BIT | ((next(_serials) & _SERIAL_MASK) << 31)
