@@ -173,7 +173,8 @@ def ball_pit(n: int, seed: int = 0) -> pm.World:
 @pytest.mark.slow
 def test_a_frictionless_pile_settles_without_overlap_or_sinking():
     """N = 1000 after 600 steps: overlap ≤ 1 % of the diameter, every sphere above the floor
-    within 0.1 % of the diameter, the total energy falling (it never gains energy). (The mean-speed target of ≤ 0.02 m/s is checked separately: not met yet.)"""
+    within 0.1 % of the diameter, the total energy falling (it never gains energy). The
+    mean-speed target of ≤ 0.02 m/s is checked separately: not met yet."""
     world = ball_pit(1000)
     energies = []
     for _ in range(600):
