@@ -10,5 +10,5 @@ if [ -n "${DISPLAY:-}${WAYLAND_DISPLAY:-}" ]; then
   exec .venv/bin/pointmass run "$demo" "$@"
 else
   echo "No display: recording $demo to $demo.mp4 instead (pointmass record)."
-  exec .venv/bin/pointmass record "$demo" -o "$demo.mp4" --seconds 10 "$@"
+  exec .venv/bin/pointmass record "$demo" -o "$demo.mp4" --seconds 10 --overwrite "$@"
 fi

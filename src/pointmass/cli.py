@@ -8,10 +8,14 @@ Every subcommand imports what it needs when it runs, so ``pointmass list`` never
 from __future__ import annotations
 
 import argparse
+import math
 import os
 import re
+import signal
 import sys
 from pathlib import Path
+
+from . import __version__
 
 EXIT_USAGE = 2
 EXIT_FAILURE = 1
@@ -43,15 +47,25 @@ def parse_size(text: str) -> tuple[int, int]:
     return w, h
 
 
-def _positive(kind: type, name: str, *, allow_zero: bool = False):
+#: Longest simulated time `render --time` and `record --seconds` take [s]: an hour of a demo is
+#: 108 000 frames at 30 fps; past that a typo (1e9) would run for ever.
+MAX_SECONDS = 3600.0
+MAX_FPS = 240
+
+
+def _in_range(kind: type, name: str, low: float, high: float, *, low_open: bool = False):
+    """An argparse type: a finite ``kind`` in [low, high] ((low, high] with ``low_open``)."""
     def convert(text: str):
         try:
             value = kind(text)
         except ValueError:
             raise argparse.ArgumentTypeError(f"{name} expects a number, got {text!r}") from None
-        if not (value >= 0 if allow_zero else value > 0) or value != value:
-            bound = ">= 0" if allow_zero else "> 0"
-            raise argparse.ArgumentTypeError(f"{name} must be {bound}, got {text!r}")
+        ok = value == value and math.isfinite(value) and value <= high and (
+            value > low if low_open else value >= low)
+        if not ok:
+            left = "(" if low_open else "["
+            raise argparse.ArgumentTypeError(
+                f"{name} must be in {left}{low:g}, {high:g}], got {text!r}")
         return value
     return convert
 
@@ -59,6 +73,7 @@ def _positive(kind: type, name: str, *, allow_zero: bool = False):
 def build_parser() -> argparse.ArgumentParser:
     parser = _Parser(prog="pointmass", description="Mass-aggregate physics demos: list, run "
                      "in a window, render a picture or record a video.")
+    parser.add_argument("--version", action="version", version=f"pointmass {__version__}")
     sub = parser.add_subparsers(dest="command", required=True, parser_class=_Parser)
 
     p = sub.add_parser("list", help="list the demos")
@@ -77,22 +92,26 @@ def build_parser() -> argparse.ArgumentParser:
     p = sub.add_parser("render", help="render one picture of a demo offscreen")
     demo_args(p)
     p.add_argument("-o", "--output", required=True, help="image file (.png, .jpg)")
-    p.add_argument("--time", type=_positive(float, "--time", allow_zero=True), default=0.0,
-                   help="simulated seconds before the picture (default 0)")
+    p.add_argument("--time", type=_in_range(float, "--time", 0.0, MAX_SECONDS), default=0.0,
+                   help="simulated seconds before the picture (default 0, at most 3600)")
     p.add_argument("--size", default="1280x720", help="WIDTHxHEIGHT pixels (default 1280x720)")
     p.add_argument("--contacts", action="store_true", help="draw contacts")
+    p.add_argument("--overwrite", action="store_true", help="replace an existing file")
     p.set_defaults(func=cmd_render)
 
     p = sub.add_parser("record", help="record a video of a demo offscreen")
     demo_args(p)
     p.add_argument("-o", "--output", required=True,
                    help="video file (.mp4, .gif) or a folder for PNG frames")
-    p.add_argument("--seconds", type=_positive(float, "--seconds"), default=5.0,
-                   help="simulated seconds to record (default 5)")
-    p.add_argument("--fps", type=_positive(int, "--fps"), default=30,
-                   help="frames per simulated second (default 30)")
+    p.add_argument("--seconds", type=_in_range(float, "--seconds", 0.0, MAX_SECONDS,
+                                                low_open=True), default=5.0,
+                   help="simulated seconds to record (default 5, at most 3600)")
+    p.add_argument("--fps", type=_in_range(int, "--fps", 1, MAX_FPS), default=30,
+                   help="frames per simulated second (default 30, 1 to 240)")
     p.add_argument("--size", default="1280x720", help="WIDTHxHEIGHT pixels (default 1280x720)")
     p.add_argument("--quiet", action="store_true", help="no progress bar")
+    p.add_argument("--overwrite", action="store_true",
+                   help="replace an existing file (or add to an existing frames folder)")
     p.set_defaults(func=cmd_record)
     return parser
 
@@ -160,10 +179,21 @@ def cmd_run(args) -> int:
     return 0
 
 
+def _refuse_overwrite(output: str, overwrite: bool, *, folder_ok: bool = False) -> None:
+    """Existing outputs are replaced only with --overwrite (nothing is lost by a typo)."""
+    path = Path(output)
+    if path.is_dir() and not folder_ok:
+        raise UsageError(f"{output} is a folder; give a file name (or a new folder for PNG "
+                         "frames)")
+    if path.exists() and not overwrite:
+        raise UsageError(f"{output} exists; pass --overwrite to replace it")
+
+
 def cmd_render(args) -> int:
     from .render.snapshot import check_writable
 
     size = parse_size(args.size)
+    _refuse_overwrite(args.output, args.overwrite)
     out = _checked_output(args.output, check_writable)
     if out.suffix.lower() not in (".png", ".jpg", ".jpeg", ".bmp", ".tif", ".tiff", ".webp"):
         raise UsageError(f"-o must name an image file (.png, .jpg), got {args.output!r}")
@@ -179,8 +209,17 @@ def cmd_render(args) -> int:
 
 def cmd_record(args) -> int:
     from .render import recording
+    from .render.video import output_kind
 
     size = parse_size(args.size)
+    try:
+        frames_folder = output_kind(args.output) == "png-folder"
+    except ValueError as exc:
+        raise UsageError(str(exc)) from None
+    if Path(args.output).is_dir() and Path(args.output).suffix:  # x.mp4/ got PNG frames
+        raise UsageError(f"{args.output} is a folder, not a video file; remove it or choose "
+                         "another name")
+    _refuse_overwrite(args.output, args.overwrite, folder_ok=frames_folder)
     try:
         target = recording.open_target(args.output, size, args.fps)
     except (PermissionError, FileNotFoundError, ValueError) as exc:
@@ -190,10 +229,31 @@ def cmd_record(args) -> int:
     except BaseException:
         target.abort()
         raise
-    result = recording.record(sim, target, seconds=args.seconds, fps=args.fps, size=size,
-                              progress=not args.quiet)
+    try:
+        result = recording.record(sim, target, seconds=args.seconds, fps=args.fps, size=size,
+                                  progress=not args.quiet)
+    except (KeyboardInterrupt, Terminated):
+        raise
+    except Exception as exc:  # the demo or the disk failed: the file so far is closed, playable
+        raise Failure(f"recording stopped by {type(exc).__name__}: {exc}; the frames "
+                      f"recorded so far are in {args.output}") from None
     print(result.summary())
     return 0 if result.complete else EXIT_FAILURE
+
+
+class Terminated(KeyboardInterrupt):
+    """SIGTERM or SIGHUP (a closed ssh session): handled like Ctrl-C, so a recording closes
+    its file before the process ends."""
+
+
+def _on_signal(signum, frame) -> None:
+    raise Terminated(signal.Signals(signum).name)
+
+
+def _handle_termination() -> None:
+    for name in ("SIGTERM", "SIGHUP"):
+        if hasattr(signal, name):
+            signal.signal(getattr(signal, name), _on_signal)
 
 
 def _checked_output(path: str, check) -> Path:
@@ -206,6 +266,7 @@ def _checked_output(path: str, check) -> Path:
 def main(argv: list[str] | None = None) -> int:
     """Run the command line; returns the exit status."""
     args = build_parser().parse_args(argv)
+    _handle_termination()
     try:
         return args.func(args)
     except UsageError as exc:
@@ -214,6 +275,9 @@ def main(argv: list[str] | None = None) -> int:
     except Failure as exc:
         print(f"pointmass: error: {exc}", file=sys.stderr)
         return EXIT_FAILURE
+    except Terminated as exc:
+        print(f"pointmass: stopped by {exc}", file=sys.stderr)
+        return 143
     except KeyboardInterrupt:
         print("pointmass: interrupted", file=sys.stderr)
         return 130

@@ -101,6 +101,8 @@ def load_demo(name_or_path: str | Path) -> Demo:
         wanted = str(name_or_path)
         matches = [p for p in demo_paths() if p.stem == wanted or demo_name(p) == wanted]
         if not matches:
+            if path.suffix == ".py" or "/" in wanted or "\\" in wanted:
+                raise ValueError(f"no such file: {wanted}")
             known = ", ".join(demo_name(p) for p in demo_paths())
             raise ValueError(f"unknown demo {wanted!r}; known demos: {known}")
         path = matches[0]
@@ -109,9 +111,11 @@ def load_demo(name_or_path: str | Path) -> Demo:
     module = importlib.util.module_from_spec(spec)
     sys.modules[module_name] = module  # dataclasses look their module up while being built
     spec.loader.exec_module(module)
-    for required in ("TITLE", "build"):
-        if not hasattr(module, required):
-            raise TypeError(f"demo file {path} has no {required}")
+    missing = [name for name in ("TITLE", "build") if not hasattr(module, name)]
+    if missing:
+        raise ValueError(f"demo file {path} is missing {' and '.join(missing)}: a demo needs "
+                         "TITLE = \"...\" and def build(params) -> Scene (see README, Writing "
+                         "a demo)")
     return Demo(demo_name(path), path, module)
 
 

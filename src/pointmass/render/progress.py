@@ -7,7 +7,9 @@ import time
 
 
 class ProgressBar:
-    """Redraws at most ``rate`` times per second; ``close()`` ends the line."""
+    """Redraws at most ``rate`` times per second; ``close()`` ends the line. When the stream is
+    not a terminal (a log file, CI), it prints a plain line every 10 % instead of ``\r``
+    redraws."""
 
     def __init__(self, total: int, *, label: str = "recording", stream=None,
                  rate: float = 8.0, width: int = 28) -> None:
@@ -17,12 +19,20 @@ class ProgressBar:
         self.start = time.perf_counter()
         self._last = -1e9
         self.done = 0
+        isatty = getattr(self.stream, "isatty", None)
+        self.terminal = bool(isatty and isatty())
+        self._next_tenth = 1
 
     def update(self, done: int, *, force: bool = False) -> None:
         self.done = done
         now = time.perf_counter()
         if not force and now - self._last < self.interval:
             return
+        if not self.terminal:
+            tenth = done * 10 // self.total
+            if tenth < self._next_tenth and not force:
+                return
+            self._next_tenth = tenth + 1
         self._last = now
         elapsed = max(now - self.start, 1e-9)
         fps = done / elapsed
@@ -30,11 +40,14 @@ class ProgressBar:
         filled = int(self.width * done / self.total)
         bar = "#" * filled + "." * (self.width - filled)
         eta = f"{int(left // 60)}:{int(left % 60):02d}" if left == left else "?:??"
-        self.stream.write(f"\r{self.label} [{bar}] {done}/{self.total} frames "
-                          f"{fps:5.1f} fps, {eta} left ")
+        line = f"{self.label} [{bar}] {done}/{self.total} frames {fps:5.1f} fps, {eta} left"
+        self.stream.write(f"\r{line} " if self.terminal else f"{line}\n")
         self.stream.flush()
 
     def close(self) -> None:
-        self.update(self.done, force=True)
-        self.stream.write("\n")
+        if self.terminal:
+            self.update(self.done, force=True)
+            self.stream.write("\n")
+        elif self._next_tenth <= 10:
+            self.update(self.done, force=True)
         self.stream.flush()

@@ -88,10 +88,16 @@ class VideoWriter:
         import av
 
         check_writable(self.path)
-        self._container = av.open(str(self.path), "w")
+        # Fragmented MP4: a fragment reaches the disk at every keyframe (one a second), so a
+        # recording killed by SIGKILL, the OOM killer or a full disk still plays up to its last
+        # fragment (measured: 805 decodable frames after kill -9, against 0 for a plain mp4,
+        # whose index is written only on close).
+        self._container = av.open(str(self.path), "w", options={
+            "movflags": "frag_keyframe+empty_moov+default_base_moof", "flush_packets": "1"})
         stream = self._container.add_stream("libx264", rate=Fraction(self.fps, 1))
         stream.width, stream.height = self.size
         stream.pix_fmt = "yuv420p"
+        stream.codec_context.gop_size = self.fps
         stream.options = {"crf": str(crf), "preset": preset}
         self._stream = stream
         self._av = av
