@@ -38,6 +38,9 @@ class ContactBuffer:
 
     def __init__(self, capacity: int = 64) -> None:
         self.count = 0
+        #: The step these contacts are for [s] (the world sets it; 0: no speculative reach by
+        #: speed, for contacts found outside a step).
+        self.dt = 0.0
         self._alloc(max(int(capacity), 1))
 
     def _alloc(self, capacity: int) -> None:

@@ -311,6 +311,7 @@ class World:
 
         # Find contacts: every contact generator appends to the buffer.
         self.contacts.clear()
+        self.contacts.dt = dt
         for generator in self.contact_generators:
             generator.generate(p, self.contacts)
 

@@ -173,8 +173,9 @@ def ball_pit(n: int, seed: int = 0) -> pm.World:
 @pytest.mark.slow
 def test_a_frictionless_pile_settles_without_overlap_or_sinking():
     """N = 1000 after 600 steps: overlap ≤ 1 % of the diameter, every sphere above the floor
-    within 0.1 % of the diameter, the total energy falling (it never gains energy). The
-    mean-speed target of ≤ 0.02 m/s is checked separately: not met yet."""
+    within 0.1 % of the diameter, the total energy falling. (Projection lifts overlapping
+    spheres by up to a few mm, which shows as a few hundredths of a joule of potential energy
+    in a step, against 14 000 J in the pile: measured ≤ 0.07 J.)"""
     world = ball_pit(1000)
     energies = []
     for _ in range(600):
@@ -183,13 +184,12 @@ def test_a_frictionless_pile_settles_without_overlap_or_sinking():
     assert stats.max_penetration <= 0.01
     assert (world.particles.position[:, 1] - 0.5).min() >= -1e-3
     rises = np.diff(energies)
-    assert rises.max() <= 1e-2 and energies[-1] < energies[100]
+    assert rises.max() <= 0.2 and energies[-1] < energies[100] - 10.0
 
 
 @pytest.mark.slow
-@pytest.mark.xfail(reason="measured mean speed 0.03–0.07 m/s after 600 steps over seeds (target "
-                          "0.02): the frictionless pile is still compacting, losing energy every "
-                          "step and gaining none; see the issue 8 note", strict=False)
+@pytest.mark.xfail(reason="measured mean speed 0.016–0.021 m/s after 600 steps over seeds (target "
+                          "0.02): met for some seeds only; see the issue 8 note", strict=False)
 def test_a_frictionless_pile_comes_to_rest_in_ten_seconds():
     """The issue's target: mean speed ≤ 0.02 m/s after 600 steps at N = 1000."""
     world = ball_pit(1000)
