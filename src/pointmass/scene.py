@@ -7,6 +7,7 @@ lists below. The physics never calls the renderer.
 
 from __future__ import annotations
 
+import math
 from collections.abc import Callable
 from dataclasses import dataclass, field
 from typing import Any
@@ -33,6 +34,24 @@ class CameraHint:
     follow: int | None = None
     """A particle the camera keeps looking at as it moves (the target follows it; orbiting and
     zooming stay yours), or None for a fixed target."""
+
+    @classmethod
+    def framing(cls, points, radii=None, *, yaw: float = 30.0, pitch: float = 20.0,
+                fov: float = 45.0, minimum: float = 2.0) -> CameraHint:
+        """A hint that frames ``points`` (N, 3) [m] with their ``radii`` (N,): the camera looks
+        at the centre of their bounds from far enough that a sphere around them, at least
+        ``minimum`` m across, fills about two thirds of the view's height."""
+        pts = np.asarray(points, dtype=np.float64).reshape(-1, 3)
+        if pts.shape[0] == 0:
+            return cls(yaw=yaw, pitch=pitch, fov=fov)
+        r = np.zeros(len(pts)) if radii is None else np.asarray(radii, np.float64).reshape(-1)
+        low = (pts - r[:, None]).min(axis=0)
+        high = (pts + r[:, None]).max(axis=0)
+        center = (low + high) / 2
+        size = max(float(np.linalg.norm(high - low)), minimum)
+        distance = (size / 2) / math.tan(math.radians(fov) / 2) / 0.66 + size / 2
+        return cls(target=tuple(center.tolist()), distance=distance, yaw=yaw, pitch=pitch,
+                   fov=fov)
 
 
 @dataclass
@@ -64,7 +83,8 @@ class Scene:
 
     Attributes:
         world: The physics world.
-        camera: Where the camera starts.
+        camera: Where the camera starts; by default it frames the particles as they are when
+            the scene is made (``CameraHint.framing``).
         colors: Per-particle RGB in [0, 1], shape (N, 3), or None for the default palette. May be
             reassigned (or grown) as particles are added.
         hidden: Optional boolean mask (N,) of particles not to draw (dead fireworks, rounds).
@@ -82,7 +102,7 @@ class Scene:
     """
 
     world: World
-    camera: CameraHint = field(default_factory=CameraHint)
+    camera: CameraHint | None = None
     colors: np.ndarray | None = None
     hidden: np.ndarray | None = None
     show_links: bool = True
@@ -100,6 +120,11 @@ class Scene:
     dt: float = 1.0 / 120.0
     """Physics time step [s] the viewer and the recorder use for this scene."""
     _trail_buffer: dict[int, list] = field(default_factory=dict, repr=False)
+
+    def __post_init__(self) -> None:
+        if self.camera is None:
+            p = self.world.particles
+            self.camera = CameraHint.framing(p.position, p.radius)
 
     def record_trails(self) -> None:
         """Append the current positions of the trailed particles (called once per frame)."""

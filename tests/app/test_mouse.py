@@ -109,3 +109,4 @@ def test_click_presses_click_and_double_click_focuses(controls):
     np.testing.assert_allclose(controls.camera.target,
                                controls.sim.scene.world.particles.position[2])
     assert controls.pressed == ["CLICK"]                # the second click focused instead
+

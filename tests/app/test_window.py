@@ -261,3 +261,24 @@ def test_opens_after_an_offscreen_render_on_this_thread(open_viewer, sim):
     finally:
         w.close()
         egl.release()
+
+
+def test_f_frames_every_particle(open_viewer, sim):
+    """F points the camera at the centre of all the particles, keeping its direction, so a
+    view that has wandered off brings the scene back."""
+    import numpy as np
+
+    w = open_viewer(sim, paused=True)
+    frames(w, 2)
+    camera = w.viewer.camera
+    yaw, pitch = camera.yaw, camera.pitch
+    camera.target = np.array([500.0, 0.0, 500.0])
+    press_key(w, "F")
+    p = sim.scene.world.particles
+    low = (p.position - p.radius[:, None]).min(axis=0)
+    high = (p.position + p.radius[:, None]).max(axis=0)
+    assert np.allclose(camera.target, (low + high) / 2)
+    assert (camera.yaw, camera.pitch) == (yaw, pitch)
+    size = w.viewer.renderer.size
+    pts = camera.project(p.position, size)
+    assert ((pts >= 0) & (pts <= np.array(size))).all()

@@ -120,3 +120,30 @@ def test_track_keeps_the_followed_particle_at_the_target():
     scene.camera.follow = None
     cam.track(scene)
     assert np.array_equal(cam.target, [5.0, 1.0, 0.0])
+
+
+def test_a_scene_without_a_camera_hint_frames_its_particles():
+    """The README's first script: after 600 steps its particles are ~9 m down the z axis; a
+    Scene made without a CameraHint looks at them, and they project inside the view, neither
+    lost nor filling it."""
+    import pointmass as pm
+
+    world = pm.World(gravity=(0, -9.81, 0))
+    a = world.add_particle(position=(0, 2, 0), velocity=(0, 10, 30), mass=1.0, radius=0.5)
+    b = world.add_particle(position=(2, 2, 2), mass=20.0, radius=0.5)
+    world.add(pm.Spring(a, b, spring_constant=100.0, rest_length=2.0))
+    world.add(pm.Drag(k1=0.1, k2=0.1))
+    world.add(pm.Ground(height=0.0, restitution=0.5))
+    world.add(pm.SphereCollisions(restitution=0.5))
+    for _ in range(600):
+        world.step(1 / 60)
+    scene = pm.Scene(world)
+    camera = OrbitCamera.from_hint(scene.camera)
+    size = (1280, 720)
+    pts = camera.project(world.particles.position, size)
+    assert ((pts[:, 0] > 0.2 * size[0]) & (pts[:, 0] < 0.8 * size[0])).all(), pts
+    assert ((pts[:, 1] > 0.2 * size[1]) & (pts[:, 1] < 0.8 * size[1])).all(), pts
+    # A hint still wins, and an empty world gets the default view.
+    hinted = pm.Scene(world, camera=pm.CameraHint(distance=3.0))
+    assert hinted.camera.distance == 3.0
+    assert pm.Scene(pm.World()).camera == pm.CameraHint()

@@ -21,6 +21,7 @@ GLOBAL_KEYS: dict[str, tuple[str, ...]] = {
     "record": ("V",),
     "panel": ("TAB",),
     "contacts": ("C",),
+    "frame": ("F",),
     "help": ("F1", "H"),
     "close": ("ESCAPE",),
 }
@@ -38,6 +39,7 @@ DESCRIPTIONS = {
     "record": "start / stop recording an mp4",
     "panel": "hide / show the panel",
     "contacts": "show / hide contacts",
+    "frame": "frame all particles",
     "help": "this help",
     "close": "close the window",
 }

@@ -11,6 +11,7 @@ import sys
 import time
 from pathlib import Path
 
+import numpy as np
 from imgui_bundle import imgui, implot
 
 from ..render import OrbitCamera, Renderer
@@ -149,10 +150,26 @@ class Viewer:
             self.show_panel = not self.show_panel
         elif action == "contacts":
             self.show_contacts = not self.show_contacts
+        elif action == "frame":
+            self.frame_all()
         elif action == "help":
             self.show_help = not self.show_help
         elif action == "close":
             self.closed = True
+
+    def frame_all(self) -> None:
+        """Point the camera at every visible particle, keeping its direction (F, as in Blender
+        and MuJoCo's viewer)."""
+        from ..scene import CameraHint
+
+        scene = self.sim.scene
+        p = scene.world.particles
+        shown = np.ones(p.count, bool) if scene.hidden is None else \
+            ~np.asarray(scene.hidden, bool)[: p.count]
+        cam = self.camera
+        hint = CameraHint.framing(p.position[shown], p.radius[shown], fov=cam.fov)
+        cam.target = np.array(hint.target, float)
+        cam.distance = hint.distance
 
     def set_param(self, name: str, value) -> None:
         """From the panel: live parameters apply at once, rebuild ones rebuild the scene."""
