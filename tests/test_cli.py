@@ -115,8 +115,8 @@ def test_run_dispatches_to_the_app(monkeypatch):
 
 
 def test_run_without_the_viewer_extra_says_how_to_get_it(monkeypatch, capsys):
-    """pointmass.app (or pyglet) missing: one line naming pointmass[viewer], exit 1."""
-    monkeypatch.setitem(sys.modules, "pointmass.app", None)    # makes the import fail
+    """pyglet missing: one line naming pointmass[viewer], exit 1."""
+    monkeypatch.setitem(sys.modules, "pyglet", None)    # makes the import fail
     monkeypatch.setenv("DISPLAY", ":99")
     assert main(["run", "side_library"]) == 1
     assert "pointmass[viewer]" in capsys.readouterr().err

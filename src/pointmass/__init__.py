@@ -36,6 +36,9 @@ def show(scene, **options):
     Imports the viewer (pyglet, imgui-bundle) only when called, so ``import pointmass`` stays
     light and works with no display.
     """
+    from .extras import require
+
+    require("viewer", "pointmass.show (a window)")
     from .app import show as _show
 
     return _show(scene, **options)

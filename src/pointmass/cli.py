@@ -15,7 +15,7 @@ import signal
 import sys
 from pathlib import Path
 
-from . import __version__
+from . import __version__, extras
 
 EXIT_USAGE = 2
 EXIT_FAILURE = 1
@@ -163,18 +163,17 @@ def cmd_run(args) -> int:
     except ValueError as exc:
         raise UsageError(str(exc)) from None
     if not has_display():
-        # Checked before pyglet is imported: importing it with no display raises.
+        # Checked before pyglet is imported: importing it with no display raises. The advice
+        # fits what is installed: `record` only works with the render extra.
+        record = (f"record a video instead with `pointmass record {args.demo} -o clip.mp4`"
+                  if extras.has("render") else
+                  'install the render extra to record videos instead (pip install '
+                  '"pointmass[render]")')
         raise UsageError(
-            "no display (neither DISPLAY nor WAYLAND_DISPLAY is set): record a video "
-            f"instead with `pointmass record {args.demo} -o clip.mp4`, or run under a virtual "
-            f"display: `xvfb-run -a pointmass run {args.demo}`")
-    try:
-        from .app import run_demo
-    except ModuleNotFoundError as exc:
-        if exc.name not in ("pointmass.app", "pyglet", "imgui_bundle"):
-            raise
-        raise Failure(f"the window needs the viewer extra ({exc.name} is missing): "
-                      "pip install 'pointmass[viewer]'") from None
+            f"no display (neither DISPLAY nor WAYLAND_DISPLAY is set): {record}, or run under "
+            f"a virtual display: `xvfb-run -a pointmass run {args.demo}`")
+    extras.require("viewer", "pointmass run (a window)")
+    from .app import run_demo
     run_demo(args.demo, overrides=list(args.overrides), paused=args.paused)
     return 0
 
@@ -190,6 +189,7 @@ def _refuse_overwrite(output: str, overwrite: bool, *, folder_ok: bool = False) 
 
 
 def cmd_render(args) -> int:
+    extras.require("render", "pointmass render")
     from .render.snapshot import check_writable
 
     size = parse_size(args.size)
@@ -208,6 +208,7 @@ def cmd_render(args) -> int:
 
 
 def cmd_record(args) -> int:
+    extras.require("render", "pointmass record")
     from .render import recording
     from .render.video import output_kind
 
@@ -272,7 +273,7 @@ def main(argv: list[str] | None = None) -> int:
     except UsageError as exc:
         print(f"pointmass: error: {exc}", file=sys.stderr)
         return EXIT_USAGE
-    except Failure as exc:
+    except (Failure, extras.MissingExtra) as exc:
         print(f"pointmass: error: {exc}", file=sys.stderr)
         return EXIT_FAILURE
     except Terminated as exc:
