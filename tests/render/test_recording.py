@@ -172,3 +172,23 @@ def test_notebook_clip_embeds_an_mp4(gl_session, tmp_path):
     assert clip.frames == 4 and clip.size == (64, 48)
     assert clip._repr_html_().startswith("<video") and "base64," in clip._repr_html_()
     assert _decode(clip.save(tmp_path / "c.mp4"))[:3] == (4, 64, 48)
+
+
+@pytest.mark.gl
+def test_a_notebook_clip_is_short_to_print_and_gives_its_frames(gl_session, tmp_path):
+    """repr is one short line (it printed 43–270 kB of bytes); frames decode to the right
+    count and size; .gif and .mp4 save."""
+    from pointmass.demo import Simulation, load_demo
+    from pointmass.render.notebook import video
+
+    clip = video(Simulation(load_demo("side_library")), seconds=1.0, size=(160, 90))
+    text = repr(clip)
+    assert text.startswith("Clip(160x90, 30 frames at 30 fps = 1.00 s, ") and len(text) < 80
+    frames = clip.to_array()
+    assert frames.shape == (30, 90, 160, 3)
+    assert "<video" in clip._repr_html_() and "muted" in clip._repr_html_()
+    from PIL import Image
+
+    gif = clip.save(tmp_path / "clip.gif")
+    assert Image.open(gif).n_frames == 30
+    assert clip.save(tmp_path / "clip.mp4").read_bytes() == clip.data

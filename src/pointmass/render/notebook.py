@@ -17,14 +17,30 @@ from .recording import record
 from .video import VideoWriter
 
 
-@dataclass
+@dataclass(repr=False)
 class Clip:
-    """An encoded mp4 (``data``) that shows itself in Jupyter."""
+    """An encoded mp4 (``data``) that shows itself in Jupyter (muted, looping), saves to .mp4
+    or .gif, and gives its frames as an array."""
 
     data: bytes
     size: tuple[int, int]
     fps: int
     frames: int
+
+    def __repr__(self) -> str:
+        w, h = self.size
+        return (f"Clip({w}x{h}, {self.frames} frames at {self.fps} fps = "
+                f"{self.frames / self.fps:.2f} s, {len(self.data) / 1000:.0f} kB)")
+
+    def to_array(self):
+        """The decoded frames, shape (frames, height, width, 3), uint8."""
+        import io
+
+        import av
+        import numpy as np
+
+        with av.open(io.BytesIO(self.data)) as container:
+            return np.stack([f.to_ndarray(format="rgb24") for f in container.decode(video=0)])
 
     def _repr_html_(self) -> str:
         b64 = base64.b64encode(self.data).decode("ascii")
@@ -33,9 +49,16 @@ class Clip:
                 f'<source src="data:video/mp4;base64,{b64}" type="video/mp4"></video>')
 
     def save(self, path: str | Path) -> Path:
-        """Write the mp4 to ``path``."""
+        """Write the clip to ``path``: ``.mp4`` as it is, ``.gif`` re-encoded (looping)."""
         path = Path(path)
-        path.write_bytes(self.data)
+        if path.suffix.lower() == ".gif":
+            from PIL import Image
+
+            images = [Image.fromarray(f) for f in self.to_array()]
+            images[0].save(path, save_all=True, append_images=images[1:], loop=0,
+                           duration=round(1000 / self.fps))
+        else:
+            path.write_bytes(self.data)
         return path
 
 
