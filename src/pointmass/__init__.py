@@ -15,13 +15,14 @@ The core imports only numpy and numba; rendering and windows load only when aske
     >>> stats = world.step(1 / 60)
 """
 
-from . import stability
+from . import probes, stability
 from .collide import Box, Ground, Plane, SphereCollisions
 from .contacts import ContactBuffer, ContactGenerator
 from .forces import Buoyancy, CustomForce, Drag, ForceGenerator, Gravity
 from .links import AnchoredCable, AnchoredRod, Cable, Rod
 from .params import choice, tweak
 from .particles import Particle, Particles
+from .probes import Probe
 from .scene import BoxVisual, CameraHint, PlaneVisual, Scene
 from .springs import AnchoredBungee, AnchoredSpring, Bungee, FakeSpring, Spring
 from .stability import UnstableStepError
@@ -48,6 +49,6 @@ __all__ = [
     "AnchoredBungee", "AnchoredCable", "AnchoredRod", "AnchoredSpring", "Box", "BoxVisual",
     "Bungee", "Buoyancy", "Cable", "CameraHint", "ContactBuffer", "ContactGenerator",
     "CustomForce", "Drag", "FakeSpring", "ForceGenerator", "Gravity", "Ground", "Particle",
-    "Particles", "Plane", "PlaneVisual", "Rod", "Scene", "SphereCollisions", "Spring",
-    "StepStats", "UnstableStepError", "World", "choice", "show", "stability", "tweak",
+    "Particles", "Plane", "PlaneVisual", "Probe", "Rod", "Scene", "SphereCollisions", "Spring",
+    "StepStats", "UnstableStepError", "World", "choice", "probes", "show", "stability", "tweak",
 ]

@@ -161,6 +161,8 @@ class World:
         self.restitution_threshold = restitution_threshold
         self.substeps = substeps
         self.time = 0.0
+        #: Probes sampled after every step (``add_probe``).
+        self.probes: list = []
         #: The particle count that every generator was last validated against.
         self._checked_count = 0
         self._jump_check = False
@@ -263,6 +265,13 @@ class World:
                         "or restore a snapshot that has its particles") from None
         self._checked_count = count
 
+    def add_probe(self, probe):
+        """Sample ``probe`` (a ``pointmass.Probe``) after every step; returns it."""
+        if not hasattr(probe, "record"):
+            raise TypeError(f"add_probe takes a Probe, got {type(probe).__name__}")
+        self.probes.append(probe)
+        return probe
+
     def remove(self, generator) -> None:
         """Remove a generator added with ``add``."""
         for group in (self.forces, self.contact_generators):
@@ -306,6 +315,8 @@ class World:
                 f"the kinetic energy overflowed ({energy}) at t = {self.time:.6g} s: a velocity "
                 f"is too large to square (largest |v| = "
                 f"{float(np.abs(self.particles.velocity).max()):.3g} m/s)")
+        for probe in self.probes:
+            probe.record(self)
         return StepStats(contacts=self.contacts.count, iterations=iterations,
                          max_penetration=float(pen.max()) if pen.size and pen.max() > 0 else 0.0,
                          kinetic_energy=energy, mode=self.solver.mode,
