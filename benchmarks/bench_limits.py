@@ -1,0 +1,158 @@
+"""pointmass against the in-run limit: for each scene, one fused numba kernel doing exactly the
+scene's work (no World, no generators, no checks), timed in the same run.
+
+    .venv/bin/python benchmarks/bench_limits.py [--quick]
+
+Prints body-steps/s (particles × steps / s) for pointmass's World and for the fused loop, and
+their ratio (1.0 = the core costs nothing over the bare loop). Median of several repeats; numba
+compilation excluded. Scenes: 100 000 free particles under gravity and drag; a 100 × 100 cloth
+(19 800 springs with damping, drag, two pinned corners).
+"""
+
+from __future__ import annotations
+
+import argparse
+import math
+import statistics
+import sys
+import time
+from pathlib import Path
+
+import numpy as np
+from numba import njit, prange
+
+sys.path.insert(0, str(Path(__file__).parent))
+from bench_physics import DT, cloth, free_particles
+
+
+@njit(cache=True, parallel=True)
+def fused_free(pos, vel, inv_mass, g, k1, k2, dt, steps):
+    """Gravity (as an acceleration), the cookbook's drag, semi-implicit Euler: one loop, on all
+    cores as pointmass runs it at this size."""
+    for _ in range(steps):
+        for i in prange(pos.shape[0]):
+            vx, vy, vz = vel[i, 0], vel[i, 1], vel[i, 2]
+            speed = math.sqrt(vx * vx + vy * vy + vz * vz)
+            w = inv_mass[i]
+            drag = -(k1 * speed + k2 * speed * speed) / speed * w if speed > 0.0 else 0.0
+            vx += (g[0] + drag * vx) * dt
+            vy += (g[1] + drag * vy) * dt
+            vz += (g[2] + drag * vz) * dt
+            vel[i, 0], vel[i, 1], vel[i, 2] = vx, vy, vz
+            pos[i, 0] += vx * dt
+            pos[i, 1] += vy * dt
+            pos[i, 2] += vz * dt
+
+
+@njit(cache=True)
+def fused_cloth(pos, vel, force, inv_mass, a, b, k, rest, damping, g, k1, k2, dt, steps):
+    """Springs (Hooke + damping along the spring), drag and integration, fused."""
+    for _ in range(steps):
+        force[:] = 0.0
+        for s in range(a.shape[0]):
+            i, j = a[s], b[s]
+            dx = pos[i, 0] - pos[j, 0]
+            dy = pos[i, 1] - pos[j, 1]
+            dz = pos[i, 2] - pos[j, 2]
+            length = math.sqrt(dx * dx + dy * dy + dz * dz)
+            closing = ((vel[i, 0] - vel[j, 0]) * dx + (vel[i, 1] - vel[j, 1]) * dy
+                       + (vel[i, 2] - vel[j, 2]) * dz) / length
+            f = (-k[s] * (length - rest[s]) - damping[s] * closing) / length
+            force[i, 0] += f * dx
+            force[i, 1] += f * dy
+            force[i, 2] += f * dz
+            force[j, 0] -= f * dx
+            force[j, 1] -= f * dy
+            force[j, 2] -= f * dz
+        for i in range(pos.shape[0]):
+            w = inv_mass[i]
+            if w > 0.0:
+                vx, vy, vz = vel[i, 0], vel[i, 1], vel[i, 2]
+                speed = math.sqrt(vx * vx + vy * vy + vz * vz)
+                drag = -(k1 * speed + k2 * speed * speed) / speed if speed > 0.0 else 0.0
+                for c in range(3):
+                    vel[i, c] += (g[c] + (force[i, c] + drag * vel[i, c]) * w) * dt
+            for c in range(3):
+                pos[i, c] += vel[i, c] * dt
+
+
+def _median_rate(run, n: int, steps: int, repeats: int) -> float:
+    times = []
+    for _ in range(repeats):
+        start = time.perf_counter()
+        run(steps)
+        times.append(time.perf_counter() - start)
+    return n * steps / statistics.median(times)
+
+
+def bench_free(n: int, steps: int, repeats: int) -> tuple[float, float]:
+    world = free_particles(n)
+    drag = world.forces[0]
+    world.step(DT)
+    p = world.particles
+    pos, vel, inv = p.position.copy(), p.velocity.copy(), p.inv_mass.copy()
+    fused_free(pos, vel, inv, world.gravity, drag.k1, drag.k2, DT, 1)
+
+    def ours(k):
+        for _ in range(k):
+            world.step(DT)
+
+    def limit(k):
+        fused_free(pos, vel, inv, world.gravity, drag.k1, drag.k2, DT, k)
+
+    return _median_rate(ours, n, steps, repeats), _median_rate(limit, n, steps, repeats)
+
+
+def bench_cloth(side: int, steps: int, repeats: int) -> tuple[float, float]:
+    world = cloth(side)
+    world.step(DT)
+    springs = world.forces[0]
+    p = world.particles
+    pos, vel, inv = p.position.copy(), p.velocity.copy(), p.inv_mass.copy()
+    force = np.zeros_like(pos)
+    args = (springs.a, springs.b, springs.spring_constant, springs.rest_length,
+            springs.damping, world.gravity, 0.0, 0.0, DT)
+    fused_cloth(pos, vel, force, inv, *args, 1)
+
+    def ours(k):
+        for _ in range(k):
+            world.step(DT)
+
+    def limit(k):
+        fused_cloth(pos, vel, force, inv, *args, k)
+
+    n = side * side
+    return _median_rate(ours, n, steps, repeats), _median_rate(limit, n, steps, repeats)
+
+
+def bench_tiny(steps: int, repeats: int) -> float:
+    """Steps per second of a 1-particle world (a cookbook user's Python loop)."""
+    import pointmass as pm
+
+    world = pm.World()
+    world.add_particle((0, 1, 0))
+    world.step(DT)
+
+    def ours(k):
+        for _ in range(k):
+            world.step(DT)
+
+    return _median_rate(ours, 1, steps, repeats)
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--quick", action="store_true", help="fewer steps and repeats")
+    args = parser.parse_args()
+    steps, repeats = (20, 3) if args.quick else (100, 5)
+    print(f"{'scene':34s} {'pointmass':>12s} {'fused loop':>12s} {'ratio':>7s}")
+    for name, (ours, limit) in (
+            ("free particles, N = 100 000", bench_free(100_000, steps, repeats)),
+            ("cloth 100 × 100 (19 800 springs)", bench_cloth(100, steps, repeats))):
+        print(f"{name:34s} {ours:12.3g} {limit:12.3g} {ours / limit:7.2f}")
+    tiny = bench_tiny(20_000 if not args.quick else 5_000, repeats)
+    print(f"{'1-particle world, steps/s':34s} {tiny:12.3g}")
+
+
+if __name__ == "__main__":
+    main()
