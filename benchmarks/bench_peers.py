@@ -124,6 +124,7 @@ def run_mujoco(n: int):
         for px, py, sx, sy in ((h + 0.5, 0, 0.5, h + 1), (-h - 0.5, 0, 0.5, h + 1),
                                (0, h + 0.5, h + 1, 0.5), (0, -h - 0.5, h + 1, 0.5)))
     xml = (f'<mujoco><option timestep="{DT}" solver="CG" gravity="0 0 -9.81"/>'
+           f'<size memory="{max(64, n // 8)}M"/>'
            f'<default><geom condim="1" friction="0 0 0"/></default><worldbody>'
            f'<geom type="plane" size="{h + 1} {h + 1} 0.1"/>{walls}{bodies}</worldbody>'
            f'</mujoco>')
