@@ -33,7 +33,7 @@ def build(p: Params) -> Scene:
     door = world.add_particle((0.0, 0.0, 0.0), (p.speed, 0.0, 0.0), mass=1.0, radius=1.0)
     spring = world.add(AnchoredSpring(door, (-2.0, 0.0, 0.0), p.stiffness, p.rest_length,
                                       damping=p.damping))
-    scene = Scene(world, camera=CameraHint(target=(0.0, 0.0, 0.0), distance=45.0, yaw=0.0,
+    scene = Scene(world, camera=CameraHint(target=(-1.0, 0.0, 0.0), distance=56.0, yaw=0.0,
                                            pitch=10.0),
                   colors=np.array([[0.35, 0.75, 0.4]]), show_ground=True, ground_height=-2.0,
                   dt=1.0 / 120.0, handles={"door": door, "spring": spring})

@@ -235,15 +235,38 @@ def test_show_wraps_a_bare_scene_and_reset_restores_it(open_viewer):
     frames(w, 2)
 
 
+def _view_width(w) -> int:
+    return w.get_framebuffer_size()[0] - w.viewer.view_x
+
+
 def test_resize_follows_the_framebuffer(open_viewer, sim):
+    """The 3D view is the framebuffer less the panel's span, and follows a resize."""
     w = open_viewer(sim)
     frames(w, 2)
-    w.set_size(640, 400)
+    w.set_size(800, 400)
     for _ in range(20):                          # the X server answers asynchronously
         frames(w)
-        if w.viewer.renderer.size == tuple(w.get_framebuffer_size()) == (640, 400):
+        if tuple(w.get_framebuffer_size()) == (800, 400):
             break
-    assert w.viewer.renderer.size == tuple(w.get_framebuffer_size())
+    frames(w)
+    assert w.viewer.renderer.size == (_view_width(w), w.get_framebuffer_size()[1])
+
+
+def test_the_scene_is_never_under_the_panel(open_viewer, sim):
+    """With the panel open the 3D view is drawn right of it (its own viewport), and takes the
+    whole window when Tab hides the panel; clicks land in the view's own pixels."""
+    from pointmass.app.panel import PANEL_SPAN
+
+    w = open_viewer(sim)
+    frames(w, 2)
+    v = w.viewer
+    fw, fh = w.get_framebuffer_size()
+    assert v.view_x == round(PANEL_SPAN * fw / w.get_size()[0]) > 0
+    assert v.renderer.size == (fw - v.view_x, fh)
+    assert v.to_view(v.view_x + 10, 20) == (10, 20)
+    press_key(w, "TAB")
+    frames(w)
+    assert v.view_x == 0 and v.renderer.size == (fw, fh)
 
 
 def test_opens_after_an_offscreen_render_on_this_thread(open_viewer, sim):

@@ -36,9 +36,11 @@ class Blitter:
         self.prog = ctx.program(vertex_shader=_VS, fragment_shader=_FS)
         self.vao = ctx.vertex_array(self.prog, [])
 
-    def draw(self, texture: moderngl.Texture, target: moderngl.Framebuffer) -> None:
+    def draw(self, texture: moderngl.Texture, target: moderngl.Framebuffer, *,
+             x: int = 0) -> None:
+        """Draw ``texture`` at its own size, ``x`` pixels from the target's left edge."""
         target.use()
-        self.ctx.viewport = (0, 0, *texture.size)
+        self.ctx.viewport = (x, 0, *texture.size)
         self.ctx.disable(moderngl.DEPTH_TEST | moderngl.BLEND)
         texture.filter = (moderngl.NEAREST, moderngl.NEAREST)
         texture.use(0)

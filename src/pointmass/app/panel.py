@@ -14,6 +14,9 @@ from ..params import param_specs
 from .keymap import MOUSE_HELP
 
 PANEL_WIDTH = 360
+#: Window points the panel takes from the left edge (its width and margins): the 3D view is
+#: drawn to the right of it, so no part of the scene is ever under the panel.
+PANEL_SPAN = PANEL_WIDTH + 16
 RESOLVERS = ("sequential", "worst-first")
 _OPEN = imgui.TreeNodeFlags_.default_open
 
@@ -32,10 +35,11 @@ class Panel:
         """Build this frame's ImGui windows (between ``new_frame`` and ``render``)."""
         if show_panel:
             io = imgui.get_io()
-            imgui.set_next_window_pos(imgui.ImVec2(8, 8), imgui.Cond_.first_use_ever)
+            imgui.set_next_window_pos(imgui.ImVec2(8, 8), imgui.Cond_.always)
             imgui.set_next_window_size(imgui.ImVec2(PANEL_WIDTH, io.display_size.y - 16),
-                                       imgui.Cond_.first_use_ever)
-            imgui.begin("pointmass")
+                                       imgui.Cond_.always)
+            imgui.begin("pointmass", None,
+                        imgui.WindowFlags_.no_move | imgui.WindowFlags_.no_resize)
             imgui.push_item_width(-150)       # leave room for the labels on the right
             self._controls(host)
             if imgui.collapsing_header("Parameters", _OPEN):

@@ -21,8 +21,11 @@ from .clock import FixedStepClock
 from .imgui_renderer import ImguiRenderer
 from .keymap import KeyMap
 from .mouse import MouseControls
-from .panel import Panel
+from .panel import PANEL_SPAN, Panel
 from .stats import FrameStats
+
+#: The window's colour where the panel stands (RGBA in [0, 1]).
+_BEHIND_PANEL = (0.09, 0.10, 0.12, 1.0)
 
 
 class Viewer:
@@ -42,13 +45,15 @@ class Viewer:
         self.ctx, self.sim = ctx, sim
         self.clock = FixedStepClock(sim.scene.dt, paused=paused)
         self.camera = OrbitCamera.from_hint(sim.scene.camera)
-        self.renderer = Renderer(ctx, size)
+        self.show_panel, self.show_help, self.show_contacts = True, False, False
+        #: The window's framebuffer size [px] and its pixels per window point.
+        self.window_size, self.pixel_ratio = tuple(size), 1.0
+        self.renderer = Renderer(ctx, self._view_size())
         self.mouse = MouseControls(self.camera, sim, lambda: self.renderer.size)
         demo = getattr(sim, "demo", None)
         self.keymap = KeyMap(demo.keys if demo is not None else {})
         self.stats = FrameStats()
         self.panel = Panel()
-        self.show_panel, self.show_help, self.show_contacts = True, False, False
         self.output_dir, self.stem = Path(output_dir), stem
         self.recorder: ViewRecorder | None = None
         self.messages: list[str] = []        # what happened (screenshot paths...), newest last
@@ -63,6 +68,24 @@ class Viewer:
         imgui.get_io().set_ini_filename(None)
         self.gui = ImguiRenderer(ctx)
         self.blitter = Blitter(ctx)
+
+    # -- layout: the 3D view beside the panel, never under it ------------------------------------
+    @property
+    def view_x(self) -> int:
+        """Left edge of the 3D view in the window [px]: right of the panel when it is shown."""
+        return round(PANEL_SPAN * self.pixel_ratio) if self.show_panel else 0
+
+    def _view_size(self) -> tuple[int, int]:
+        w, h = self.window_size
+        return max(16, w - self.view_x), h
+
+    def to_view(self, x: float, y: float) -> tuple[float, float]:
+        """Window pixels (origin top-left) to 3D-view pixels."""
+        return x - self.view_x, y
+
+    def _layout(self) -> None:
+        if self.recorder is None:  # a recording keeps its frame size until it stops
+            self.renderer.resize(self._view_size())
 
     @property
     def recording(self) -> bool:
@@ -104,7 +127,9 @@ class Viewer:
             self.recorder.offer(r.read_rgb, self.sim.scene.time)
             if self.recorder.error is not None:
                 self.stop_recording()
-        self.blitter.draw(r.color_texture, screen)
+        screen.use()
+        screen.clear(*_BEHIND_PANEL)
+        self.blitter.draw(r.color_texture, screen, x=self.view_x)
         t0 = time.perf_counter()
         imgui.new_frame()
         self.panel.draw(self, show_panel=self.show_panel)
@@ -112,9 +137,12 @@ class Viewer:
         self.gui.render(imgui.get_draw_data())
         self.stats.gui_ms = 1e3 * (time.perf_counter() - t0)
 
-    def resize(self, size: tuple[int, int]) -> None:
+    def resize(self, size: tuple[int, int], pixel_ratio: float | None = None) -> None:
         if size[0] > 0 and size[1] > 0:
-            self.renderer.resize(size)
+            self.window_size = tuple(size)
+            if pixel_ratio is not None:
+                self.pixel_ratio = pixel_ratio
+            self._layout()
 
     # -- actions (keys, panel buttons) ----------------------------------------------------------
     def key(self, name: str, *, ctrl: bool = False) -> str | None:
@@ -148,6 +176,7 @@ class Viewer:
             self.stop_recording() if self.recording else self.start_recording()
         elif action == "panel":
             self.show_panel = not self.show_panel
+            self._layout()
         elif action == "contacts":
             self.show_contacts = not self.show_contacts
         elif action == "frame":

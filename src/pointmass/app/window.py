@@ -94,7 +94,8 @@ class ViewerWindow(pyglet.window.Window):
         if self.viewer is None:
             return pyglet.event.EVENT_HANDLED
         self.imgui_input.sync_size()
-        self.viewer.resize(self.get_framebuffer_size())
+        self.viewer.resize(self.get_framebuffer_size(),
+                           self.get_framebuffer_size()[0] / max(self.get_size()[0], 1))
         self.gl_screen = self.ctx.detect_framebuffer(0)
         return pyglet.event.EVENT_HANDLED
 
@@ -112,7 +113,8 @@ class ViewerWindow(pyglet.window.Window):
             self._mouse_owner = "gui"
             return
         self._mouse_owner = "scene"
-        self.viewer.mouse.press(*self._to_pixels(x, y), _BUTTONS.get(button, "left"),
+        self.viewer.mouse.press(*self.viewer.to_view(*self._to_pixels(x, y)),
+                                _BUTTONS.get(button, "left"),
                                 shift=bool(modifiers & key.MOD_SHIFT),
                                 ctrl=bool(modifiers & key.MOD_CTRL))
 
@@ -121,7 +123,7 @@ class ViewerWindow(pyglet.window.Window):
             return
         self.imgui_input.mouse_move(x, y)
         if self._mouse_owner == "scene":
-            px, py = self._to_pixels(x, y)
+            px, py = self.viewer.to_view(*self._to_pixels(x, y))
             scale = self.get_framebuffer_size()[0] / self.get_size()[0]
             self.viewer.mouse.drag(px, py, dx * scale, -dy * scale)
 
@@ -131,7 +133,8 @@ class ViewerWindow(pyglet.window.Window):
         self.imgui_input.mouse_button(x, y, button, False)
         owner, self._mouse_owner = self._mouse_owner, None
         if owner == "scene":
-            self.viewer.mouse.release(*self._to_pixels(x, y), _BUTTONS.get(button, "left"))
+            self.viewer.mouse.release(*self.viewer.to_view(*self._to_pixels(x, y)),
+                                      _BUTTONS.get(button, "left"))
 
     def on_mouse_scroll(self, x, y, scroll_x, scroll_y) -> None:
         if self.viewer is None:       # closed
