@@ -32,8 +32,9 @@ def build(p: Params) -> Scene:
     world = World(gravity=(0.0, -p.gravity, 0.0))
     ball = world.add_particle((0.0, 0.0, 0.0), (p.vx, p.vy, p.vz), mass=1.0, radius=0.3)
     ground = world.add(Ground(0.0, restitution=p.restitution))
+    # The camera follows the ball: it bounces on along x and z for ever.
     return Scene(world, camera=CameraHint(target=(10.5, 2.5, 10.5), distance=28.0, yaw=-45.0,
-                                          pitch=18.0),
+                                          pitch=18.0, follow=ball),
                  colors=np.array([[0.95, 0.45, 0.2]]), trails=[ball], trail_length=600,
                  handles={"ball": ball, "ground": ground, "launch": (p.vx, p.vz)},
                  dt=1.0 / 60.0)

@@ -37,8 +37,9 @@ def build(p: Params) -> Scene:
     spring = world.add(Spring(light, heavy, p.stiffness, p.rest_length))
     world.add(Ground(0.0, restitution=0.4))
     momentum = world.particles.momentum().copy()
+    # The camera follows the heavy end: the launched pair travels on.
     return Scene(world, camera=CameraHint(target=(2.0, 2.0, 6.0), distance=16.0, yaw=-70.0,
-                                          pitch=15.0),
+                                          pitch=15.0, follow=heavy),
                  colors=np.array([[0.3, 0.6, 0.95], [0.9, 0.35, 0.25]]), trails=[light, heavy],
                  handles={"spring": spring, "momentum": momentum}, dt=1.0 / 120.0)
 

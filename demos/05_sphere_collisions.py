@@ -47,7 +47,7 @@ def build(p: Params) -> Scene:
     world.add_particles(np.zeros((4, 3)), masses=MASSES, radii=RADIUS)
     collisions = world.add(SphereCollisions(restitution=p.restitution))
     colors = np.array([(0.9, 0.3, 0.25), (0.25, 0.55, 0.9), (0.95, 0.75, 0.2), (0.35, 0.75, 0.4)])
-    scene = Scene(world, camera=CameraHint(target=(0.0, 1.0, 0.0), distance=11.0, yaw=0.0,
+    scene = Scene(world, camera=CameraHint(target=(0.0, 1.0, 0.0), distance=32.0, yaw=0.0,
                                            pitch=55.0),
                   colors=colors, trails=[0, 1, 2, 3], trail_length=120, dt=1.0 / 120.0,
                   handles={"collisions": collisions, "params": p})
