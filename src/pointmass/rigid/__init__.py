@@ -1,0 +1,1 @@
+"""Rigid bodies (issue 13): solver-independent foundations. Not exported from pointmass yet."""
