@@ -294,7 +294,8 @@ class World:
         # the world stays as it was and the user can go on with a smaller dt. With substeps,
         # the earlier substeps are undone from a copy.
         self._jump_check = needs_jump_check(self.forces)
-        saved = (self.particles.snapshot(), self.time) if self._substeps > 1 else None
+        saved = (self.particles.snapshot(), self.time, self.impulses.snapshot()) \
+            if self._substeps > 1 else None
         iterations = velocity_passes = position_passes = 0
         try:
             for _ in range(self._substeps):
@@ -306,6 +307,7 @@ class World:
             if saved is not None:  # a later substep blew up: undo the earlier ones
                 self.particles.restore(saved[0])
                 self.time = saved[1]
+                self.impulses.restore(saved[2])
             raise
         self.time += float(dt)
         pen = self.contacts.penetration

@@ -59,6 +59,13 @@ class ImpulseHistory:
         """Forget everything (after a reset, so a replay is bit-identical to the first run)."""
         self.__init__()
 
+    def snapshot(self) -> tuple:
+        """What is kept now, to ``restore`` (the world undoes a step that blew up)."""
+        return self._keys, self._normal, self._tangent
+
+    def restore(self, snap: tuple) -> None:
+        self._keys, self._normal, self._tangent = snap
+
     def recall(self, keys: np.ndarray, normal: np.ndarray, tangent: np.ndarray) -> None:
         """Fill ``normal`` (M,) and ``tangent`` (M, 3) with the impulses kept for ``keys`` (0
         for a contact that is new or has no key)."""
