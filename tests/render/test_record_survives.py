@@ -147,3 +147,19 @@ def test_progress_prints_sparse_lines_when_not_on_a_terminal():
     text = stream.getvalue()
     assert "\r" not in text
     assert 10 <= len(text.splitlines()) <= 11
+
+
+def test_a_gif_stopped_by_sigterm_keeps_its_frames(tmp_path):
+    """A GIF is written when its file closes: SIGTERM closes it like Ctrl-C, so the frames so
+    far are kept (it was 0 bytes). SIGKILL still leaves nothing for a GIF: use mp4."""
+    from PIL import Image
+
+    out = tmp_path / "clip.gif"
+    proc = subprocess.Popen([sys.executable, "-m", "pointmass", "record", "projectile", "-o",
+                             str(out), "--seconds", "600", "--size", "80x46", "--quiet"],
+                            stdout=subprocess.DEVNULL, stderr=subprocess.PIPE)
+    time.sleep(15)  # start-up (imports, cached kernels) takes a few seconds; then frames
+    os.kill(proc.pid, signal.SIGTERM)
+    proc.wait(timeout=60)
+    assert proc.returncode == 143
+    assert Image.open(out).n_frames > 10
