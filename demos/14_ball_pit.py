@@ -3,9 +3,9 @@
 The spheres pour in from a spout above the box over ``pour_seconds`` (waiting spheres are parked
 below the floor, hidden and immovable), so the pile grows and flows for most of a recording.
 The stress test for the engine: sphere–sphere contacts found through a spatial hash (linear in
-N), the box's floor and four walls, and the resolver in sweep mode for thousands of contacts.
+N), the box's floor and four walls, and the default solver on thousands of contacts.
 N goes up to 20 000 (a rebuild parameter); the box grows with N so the pile stays a few layers
-deep. Friction (Coulomb, in the sweep) lets the pile settle instead of slumping forever.
+deep. Friction (Coulomb) lets the pile settle instead of slumping forever.
 The oracle: nothing escapes the box and the spheres barely overlap.
 
 Keys: SPACE stirs the pit (kicks every ball up).   Run: pointmass run ball_pit --set count=5000
