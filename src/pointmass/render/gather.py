@@ -90,14 +90,17 @@ def link_lines(scene: Scene, width_scale: float) -> list[np.ndarray]:
     return out
 
 
-def trail_lines(scene: Scene, colors: np.ndarray, width_scale: float) -> list[np.ndarray]:
-    """Line rows for each trailed particle's recent path, fading toward its oldest point."""
+def trail_lines(scene: Scene, trails, colors: np.ndarray, width_scale: float
+                ) -> list[np.ndarray]:
+    """Line rows for each recorded path (``pointmass.trails.Trails``), from the trail's oldest
+    point, nearly transparent, to the particle's current position."""
     out = []
     hidden = scene.hidden
-    for i in scene.trails:
-        if hidden is not None and i < len(hidden) and hidden[i]:
+    pos = scene.world.particles.position
+    for i in trails:
+        if i >= len(pos) or (hidden is not None and i < len(hidden) and hidden[i]):
             continue  # a dead round or spark: its old path is not its own any more
-        pts = scene.trail_points(i)
+        pts = np.vstack([trails.points(i), pos[i]])
         if len(pts) < 2:
             continue
         alpha = np.linspace(0.05, 0.9, len(pts) - 1)
