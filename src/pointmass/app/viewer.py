@@ -54,7 +54,8 @@ class Viewer:
         #: The window's framebuffer size [px] and its pixels per window point.
         self.window_size, self.pixel_ratio = tuple(size), 1.0
         self.renderer = Renderer(ctx, self._view_size())
-        self.mouse = MouseControls(self.camera, sim, lambda: self.renderer.size)
+        self.mouse = MouseControls(self.camera, sim, lambda: self.renderer.size,
+                                   say=self._say)
         demo = getattr(sim, "demo", None)
         self.keymap = KeyMap(demo.keys if demo is not None else {})
         self.stats = FrameStats()
