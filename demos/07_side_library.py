@@ -53,7 +53,11 @@ def build(p: Params) -> Scene:
     scene = Scene(world, camera=CameraHint(target=(0.0, 1.0, 0.0), distance=8.0, yaw=20.0,
                                            pitch=18.0),
                   colors=np.array([[0.25, 0.55, 0.90]]), boxes=[cube],
-                  handles={"ball": ball, "cube": cube, "params": p}, dt=1.0 / 120.0)
+                  handles={"ball": ball, "cube": cube, "params": p}, dt=1.0 / 120.0,
+                  # Nothing here has mass to give energy: the live plot shows the motion itself.
+                  plots={"sphere x [m]": lambda s: float(s.world.particles.position[ball, 0]),
+                         "cube turns": lambda s: math.radians(s.handles["params"].spin)
+                         * s.time / (2 * math.pi)})
     return scene
 
 

@@ -25,8 +25,9 @@ TITLE = "Platform (see-saw truss)"
 G = 9.81
 X_LEFT, X_RIGHT = -3.0, 4.0
 CORNERS = np.array([2, 3, 4, 5])  # left-front, left-back, right-front, right-back
+RADIUS = 0.15  # the particles are balls resting *on* the ground, not points half sunk into it
 POSITIONS = np.array([(0, 0, 1), (0, 0, -1), (X_LEFT, 2, 1), (X_LEFT, 2, -1), (X_RIGHT, 2, 1),
-                      (X_RIGHT, 2, -1)], float)
+                      (X_RIGHT, 2, -1)], float) + np.array([0.0, RADIUS, 0.0])
 
 
 @dataclass
@@ -56,7 +57,8 @@ def build(p: Params) -> Scene:
     # Four substeps: a 50 kg load on 1 kg pivots still dips them about 1 cm into the ground
     # with one step per frame (rods 50 times heavier on one end converge slowly).
     world = World(gravity=(0.0, -G, 0.0), substeps=4)
-    world.add_particles(POSITIONS, masses=p.particle_mass, damping=0.3)  # calms the see-saw's slams
+    world.add_particles(POSITIONS, masses=p.particle_mass, radii=RADIUS,
+                        damping=0.3)  # damping calms the see-saw's slams
     a, b = np.array(list(itertools.combinations(range(6), 2))).T
     rods = world.add(Rod(a, b, np.linalg.norm(POSITIONS[a] - POSITIONS[b], axis=1)))
     world.add(Ground(restitution=0.1))
@@ -66,7 +68,7 @@ def build(p: Params) -> Scene:
     scene = Scene(world, camera=CameraHint(target=(0.5, 1.0, 0.0), distance=12.0, yaw=20.0,
                                            pitch=15.0),
                   colors=np.array([(0.9, 0.9, 0.9)] * 2 + [(0.3, 0.6, 0.95)] * 4),
-                  boxes=[box], point_radius=0.15, dt=1.0 / 120.0,
+                  boxes=[box], dt=1.0 / 120.0,
                   handles={"load": load, "box": box, "rods": rods})
     _place_box(scene)
     return scene
@@ -104,10 +106,10 @@ KEYS = wasd_keys(lambda scene, p, dx, dz: move(scene, 0.5 * dx, 0.5 * dz), "the 
 
 
 def check(scene: Scene) -> None:
-    """Rods keep their lengths within 1 %, and nothing sinks more than 5 cm into the ground."""
+    """Rods keep their lengths within 1 %, and no ball sinks more than 5 cm into the ground."""
     parts = scene.world.particles
     assert np.isfinite(parts.position).all()
     rods = scene.handles["rods"]
     error = np.abs(rods.current_lengths(parts) / rods.length - 1)
     assert error.max() < 0.01, f"a rod is off its length by {error.max():.2%}"
-    assert parts.position[:, 1].min() > -0.05, "the platform sank into the ground"
+    assert parts.position[:, 1].min() > RADIUS - 0.05, "the platform sank into the ground"

@@ -43,6 +43,10 @@ class Panel:
             imgui.begin("pointmass", None,
                         imgui.WindowFlags_.no_move | imgui.WindowFlags_.no_resize)
             imgui.push_item_width(-150)       # leave room for the labels on the right
+            # Thin, translucent slider handles: ImGui's default 12 px block sits on the
+            # centred value text and hides it whenever the value is mid-range.
+            imgui.push_style_var(imgui.StyleVar_.grab_min_size, 4.0)
+            imgui.push_style_color(imgui.Col_.slider_grab, imgui.ImVec4(0.45, 0.70, 1.0, 0.75))
             self._controls(host)
             if imgui.collapsing_header("Parameters", _OPEN):
                 self._parameters(host)
@@ -54,6 +58,8 @@ class Panel:
                 imgui.set_next_item_open(True, imgui.Cond_.once)
             if imgui.collapsing_header("World"):      # closed at first: less used
                 self._world(host)
+            imgui.pop_style_color()
+            imgui.pop_style_var()
             imgui.pop_item_width()
             imgui.end()
         if host.show_help:
@@ -176,7 +182,9 @@ class Panel:
             return
         kinetic, potential = probe["kinetic"], probe["potential"]
         energies = {"kinetic": kinetic, "potential": potential, "total": kinetic + potential}
-        if implot.begin_plot("##energy", imgui.ImVec2(-1, 130)):
+        movable = bool((host.sim.world.particles.inv_mass > 0).any())
+        # A scene of only kinematic (infinite-mass) bodies has no energy: no flat-zero plot.
+        if movable and implot.begin_plot("##energy", imgui.ImVec2(-1, 130)):
             _setup_axes("t [s]", "energy [J]", t, energies.values())
             implot.setup_legend(implot.Location_.north_west)
             for name, ys in energies.items():
