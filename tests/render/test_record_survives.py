@@ -40,11 +40,19 @@ def _decoded_frames(path: Path) -> int:
         return sum(1 for _ in container.decode(video=0))
 
 
+def _default_sigint() -> None:
+    signal.signal(signal.SIGINT, signal.SIG_DFL)
+
+
 def _record_then(sig: int, out: Path) -> int:
     """Start a long recording, wait until the file has real content, send ``sig``."""
     proc = subprocess.Popen([sys.executable, "-m", "pointmass", "record", "ball_pit", "-o",
                              str(out), "--seconds", "120", "--size", "320x180", "--quiet"],
-                            stdout=subprocess.DEVNULL, stderr=subprocess.PIPE)
+                            stdout=subprocess.DEVNULL, stderr=subprocess.PIPE,
+                            # A test run in the background (`pytest &`) inherits an ignored
+                            # SIGINT, and Python then keeps ignoring it, as POSIX wants for
+                            # background jobs; a user's Ctrl-C reaches a foreground process.
+                            preexec_fn=_default_sigint)  # noqa: PLW1509 (one syscall)
     deadline = time.monotonic() + 120
     while time.monotonic() < deadline:
         if out.exists() and out.stat().st_size > 60_000:
