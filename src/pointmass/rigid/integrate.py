@@ -35,6 +35,8 @@ from .scalar import axis_rotate, qexp, qmul, qnormalize, qrot, qrot_inv, solve3
 MAX_ITERATIONS = 30
 #: Relative residual (in angular momentum) at which the iteration stops.
 TOLERANCE = 1e-13
+#: Largest turn [rad] solved in one piece (see ``free_rotation``).
+MAX_TURN = 1.0
 
 
 @njit(cache=True)
@@ -53,6 +55,19 @@ def free_rotation(qw, qx, qy, qz, wx, wy, wz, ix, iy, iz, h):
         dw, dx, dy, dz = qexp(wx, wy, wz, h)
         nw, nx, ny, nz = qnormalize(*qmul(dw, dx, dy, dz, qw, qx, qy, qz))
         return nw, nx, ny, nz, wx, wy, wz
+    # Newton converges (to 1e-11 in energy) up to about 1 rad per step and fails past 3; the
+    # stepper caps a step at π/4, but a contact solver may spin a body faster before this drift,
+    # so a long turn is split into pieces of at most MAX_TURN (L and energy are still kept).
+    pieces = max(1, math.ceil(h * math.sqrt(wx * wx + wy * wy + wz * wz) / MAX_TURN))
+    hp = h / pieces
+    for _ in range(pieces):
+        qw, qx, qy, qz, wx, wy, wz = _turn(qw, qx, qy, qz, wx, wy, wz, ix, iy, iz, hp)
+    return qw, qx, qy, qz, wx, wy, wz
+
+
+@njit(cache=True)
+def _turn(qw, qx, qy, qz, wx, wy, wz, ix, iy, iz, h):
+    """One energy-momentum step of an asymmetric body (the module docstring's method)."""
     bx, by, bz = qrot_inv(qw, qx, qy, qz, wx, wy, wz)
     mx, my, mz = bx / ix, by / iy, bz / iz  # body angular momentum M0
     scale = math.sqrt(mx * mx + my * my + mz * mz)
