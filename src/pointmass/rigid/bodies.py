@@ -1,0 +1,361 @@
+"""Rigid bodies stored as a struct of arrays, like ``Particles``: a body is an index.
+
+``Body`` gives object-style access on top (``b.position``, ``b.add_force_at_point(...)``). The
+arrays grow as bodies are added (capacity doubles), so a property such as ``position`` returns a
+view of the first ``count`` rows: read it again after adding bodies.
+
+Inertia is stored as the three principal *inverse* moments in body coordinates (0 = infinite:
+that axis never turns from a torque), and the world inverse inertia R·diag(I⁻¹)·Rᵀ is derived
+from the orientation after every position update (not left from the last step, Cyclone's R2).
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from .. import _validate as check
+from ..particles import inverse_masses
+from .quaternion import world_inv_inertia
+from .shapes import NONE, Box, Sphere, mass_properties
+
+_FIELDS_3 = ("position", "velocity", "angular_velocity", "force", "torque", "inv_inertia", "size")
+_FIELDS_1 = ("inv_mass", "linear_damping", "angular_damping")
+
+
+class Bodies:
+    """All rigid bodies of a world, struct-of-arrays.
+
+    Attributes (views of the first ``count`` rows):
+        position: Centre of mass [m], shape (N, 3), float64.
+        orientation: Unit quaternions (w, x, y, z), body -> world, shape (N, 4).
+        velocity: Linear velocity of the centre of mass [m/s], shape (N, 3).
+        angular_velocity: World angular velocity [rad/s], shape (N, 3).
+        force: Force accumulator [N], shape (N, 3); cleared after every step.
+        torque: Torque accumulator about the centre of mass [N m], shape (N, 3).
+        inv_mass: Inverse mass [1/kg], shape (N,); 0 means infinite mass.
+        inv_inertia: Inverse principal moments along the body axes [1/(kg m²)], shape (N, 3);
+            0 means an infinite moment.
+        inv_inertia_world: World inverse inertia [1/(kg m²)], shape (N, 3, 3); derived.
+        linear_damping, angular_damping: Fraction of velocity kept per second, in [0, 1],
+            shape (N,); 1 means none (the particles' convention).
+        shape: Shape kind per body (``shapes.NONE``, ``SPHERE``, ``BOX``), shape (N,), int64.
+        size: Sphere radius in column 0, or box half-extents [m], shape (N, 3).
+    """
+
+    def __init__(self, capacity: int = 16) -> None:
+        self._count = 0
+        self._alloc(max(int(capacity), 1))
+
+    # -- storage -------------------------------------------------------------------------------
+    def _alloc(self, capacity: int) -> None:
+        n = self._count
+        shapes = dict.fromkeys(_FIELDS_3, (capacity, 3))
+        shapes.update(dict.fromkeys(_FIELDS_1, (capacity,)))
+        shapes.update(orientation=(capacity, 4), inv_inertia_world=(capacity, 3, 3),
+                      shape=(capacity,))
+        for name, shape in shapes.items():
+            arr = np.zeros(shape, dtype=np.int64 if name == "shape" else np.float64)
+            old = getattr(self, "_" + name, None)
+            if old is not None:
+                arr[:n] = old[:n]
+            setattr(self, "_" + name, arr)
+        self._capacity = capacity
+
+    @property
+    def count(self) -> int:
+        """Number of bodies."""
+        return self._count
+
+    def __len__(self) -> int:
+        return self._count
+
+    def _view(name: str, doc: str):
+        return property(lambda self: getattr(self, "_" + name)[: self._count], doc=doc)
+
+    position = _view("position", "Centre of mass [m], (N, 3).")
+    orientation = _view("orientation", "Unit quaternions (w, x, y, z), (N, 4).")
+    velocity = _view("velocity", "Linear velocity [m/s], (N, 3).")
+    angular_velocity = _view("angular_velocity", "World angular velocity [rad/s], (N, 3).")
+    force = _view("force", "Force accumulator [N], (N, 3).")
+    torque = _view("torque", "Torque accumulator [N m], (N, 3).")
+    inv_mass = _view("inv_mass", "Inverse mass [1/kg], (N,).")
+    inv_inertia = _view("inv_inertia", "Inverse principal moments [1/(kg m²)], (N, 3).")
+    inv_inertia_world = _view("inv_inertia_world", "World inverse inertia, (N, 3, 3).")
+    linear_damping = _view("linear_damping", "Fraction of v kept per second, (N,).")
+    angular_damping = _view("angular_damping", "Fraction of ω kept per second, (N,).")
+    shape = _view("shape", "Shape kind, (N,).")
+    size = _view("size", "Radius or half-extents [m], (N, 3).")
+    del _view
+
+    # -- adding --------------------------------------------------------------------------------
+    def add(self, position=(0.0, 0.0, 0.0), orientation=(1.0, 0.0, 0.0, 0.0),
+            velocity=(0.0, 0.0, 0.0), angular_velocity=(0.0, 0.0, 0.0), *,
+            shape: Sphere | Box | None = None, mass: float | None = None,
+            density: float | None = None, inertia=None, linear_damping: float = 1.0,
+            angular_damping: float = 1.0) -> int:
+        """Add one body and return its index.
+
+        Args:
+            position: Centre of mass [m].
+            orientation: Quaternion (w, x, y, z), nonzero; normalised here.
+            velocity: Linear velocity [m/s].
+            angular_velocity: World angular velocity [rad/s].
+            shape: ``Sphere`` or ``Box`` (collision and mass properties), or ``None``.
+            mass: Mass [kg] in (0, inf]; ``inf`` with a shape gives infinite inertia too.
+            density: Density [kg/m³] in (0, inf], instead of ``mass`` (needs a shape).
+            inertia: Principal moments [kg m²] along the body axes, each in (0, inf]
+                (``inf`` locks that axis); overrides the shape's. Needed without a shape.
+            linear_damping, angular_damping: Fraction of velocity kept per second, in [0, 1].
+        """
+        pos = check.vec3(position, "position")
+        quat = _unit_quaternion(orientation)
+        vel = check.vec3(velocity, "velocity")
+        ang = check.vec3(angular_velocity, "angular_velocity")
+        if shape is None:
+            if density is not None:
+                raise ValueError("density needs a shape (Sphere or Box) to give a mass")
+            if inertia is None:
+                raise ValueError("a body without a shape needs inertia: three principal "
+                                 "moments [kg m²], each in (0, inf]")
+            m = 1.0 if mass is None else mass
+            inv_m = inverse_masses(m, 1)[0]
+            kind, size = NONE, np.zeros(3)
+        else:
+            if not isinstance(shape, (Sphere, Box)):
+                raise TypeError(f"shape must be a Sphere, a Box or None, got {shape!r}")
+            if mass is None and density is None:
+                mass = 1.0
+            m, moments = mass_properties(shape, density=density, mass=mass)
+            inv_m = 0.0 if math.isinf(m) else inverse_masses(m, 1)[0]
+            if inertia is None:
+                inertia = moments
+            kind, size = shape.kind, shape.size
+        inv_i = inverse_inertia(inertia)
+        lin = check.scalar(linear_damping, "linear_damping", low=0.0, high=1.0)
+        angd = check.scalar(angular_damping, "angular_damping", low=0.0, high=1.0)
+        if self._count == self._capacity:
+            self._alloc(2 * self._capacity)
+        i = self._count
+        self._count += 1
+        self._position[i] = pos
+        self._orientation[i] = quat
+        self._velocity[i] = vel
+        self._angular_velocity[i] = ang
+        self._force[i] = 0.0
+        self._torque[i] = 0.0
+        self._inv_mass[i] = inv_m
+        self._inv_inertia[i] = inv_i
+        self._inv_inertia_world[i] = world_inv_inertia(quat, inv_i)
+        self._linear_damping[i] = lin
+        self._angular_damping[i] = angd
+        self._shape[i] = kind
+        self._size[i] = size
+        return i
+
+    def add_sphere(self, radius: float, position=(0.0, 0.0, 0.0), velocity=(0.0, 0.0, 0.0),
+                   **kwargs) -> int:
+        """Add a solid sphere of ``radius`` [m]; keywords as ``add`` (``density`` or ``mass``)."""
+        return self.add(position, velocity=velocity, shape=Sphere(radius), **kwargs)
+
+    def add_box(self, half_extents, position=(0.0, 0.0, 0.0), orientation=(1.0, 0.0, 0.0, 0.0),
+                **kwargs) -> int:
+        """Add a solid box of ``half_extents`` [m]; keywords as ``add``."""
+        return self.add(position, orientation, shape=Box(half_extents), **kwargs)
+
+    # -- access --------------------------------------------------------------------------------
+    def __getitem__(self, index: int) -> Body:
+        return Body(self, self.check_index(index))
+
+    def check_index(self, index, name: str = "body") -> int:
+        """``index`` as an int if it names a body, else an error naming ``name``."""
+        if isinstance(index, Body):
+            index = index.index
+        if isinstance(index, bool) or not isinstance(index, (int, np.integer)):
+            raise TypeError(f"{name} must be a body index (int), got {index!r}")
+        if not 0 <= index < self._count:
+            raise IndexError(f"{name}: {index} is not a body; indices must be in "
+                             f"[0, {self._count - 1}]" if self._count else
+                             f"{name}: {index} is not a body; there are none yet")
+        return int(index)
+
+    # -- forces --------------------------------------------------------------------------------
+    def add_force(self, index: int, force) -> None:
+        """Add a force [N] through the centre of mass (no torque)."""
+        self._force[self.check_index(index)] += check.vec3(force, "force")
+
+    def add_torque(self, index: int, torque) -> None:
+        """Add a torque [N m] about the centre of mass."""
+        self._torque[self.check_index(index)] += check.vec3(torque, "torque")
+
+    def add_force_at_point(self, index: int, force, point) -> None:
+        """Add a force [N] acting at a world ``point`` [m]: the force, plus the torque
+        (point − centre) × force."""
+        i = self.check_index(index)
+        f = check.vec3(force, "force")
+        r = check.vec3(point, "point") - self._position[i]
+        self._force[i] += f
+        self._torque[i] += np.cross(r, f)
+
+    def clear_accumulators(self) -> None:
+        """Zero every force and torque (the stepper does this after each step)."""
+        self.force[:] = 0.0
+        self.torque[:] = 0.0
+
+    # -- derived -------------------------------------------------------------------------------
+    def kinetic_energy(self) -> float:
+        """Σ ½ m|v|² + ½ ω·Iω over bodies with finite mass / moments [J]."""
+        total = 0.0
+        for i in range(self._count):
+            if self.inv_mass[i] > 0:
+                total += 0.5 * float(self.velocity[i] @ self.velocity[i]) / self.inv_mass[i]
+            inv = self.inv_inertia[i]
+            if (inv > 0).all():
+                wb = world_rotation(self.orientation[i]).T @ self.angular_velocity[i]
+                total += 0.5 * float(np.sum(wb * wb / inv))
+        return total
+
+    def angular_momentum(self, index: int) -> np.ndarray:
+        """I_world·ω about the centre of mass [kg m²/s], shape (3,), for a body whose three
+        moments are finite."""
+        i = self.check_index(index)
+        inv = self.inv_inertia[i]
+        if not (inv > 0).all():
+            raise ValueError(f"body {i} has an infinite moment of inertia: no finite momentum")
+        r = world_rotation(self.orientation[i])
+        return r @ ((r.T @ self.angular_velocity[i]) / inv)
+
+    def update_world_inertia(self) -> None:
+        """Recompute ``inv_inertia_world`` from the orientations (after editing them by hand)."""
+        for i in range(self._count):
+            self._inv_inertia_world[i] = world_inv_inertia(self._orientation[i],
+                                                           self._inv_inertia[i])
+
+
+def world_rotation(q: np.ndarray) -> np.ndarray:
+    """Rotation matrix (3, 3) of a unit quaternion (w, x, y, z), in numpy."""
+    w, x, y, z = q
+    return np.array([[1 - 2 * (y * y + z * z), 2 * (x * y - w * z), 2 * (x * z + w * y)],
+                     [2 * (x * y + w * z), 1 - 2 * (x * x + z * z), 2 * (y * z - w * x)],
+                     [2 * (x * z - w * y), 2 * (y * z + w * x), 1 - 2 * (x * x + y * y)]])
+
+
+def inverse_inertia(inertia) -> np.ndarray:
+    """Inverse principal moments from moments [kg m²], each in (0, inf] (``inf`` gives 0)."""
+    check.numeric(inertia, "inertia", "three principal moments [kg m²]")
+    try:
+        arr = np.asarray(inertia, dtype=np.float64).reshape(3)
+    except (TypeError, ValueError):
+        raise ValueError("inertia must be three principal moments [kg m²], each in (0, inf], "
+                         f"got {inertia!r}") from None
+    ok = (arr > 0.0) & ~np.isnan(arr)
+    if not ok.all():
+        raise ValueError("inertia must be three principal moments [kg m²], each in (0, inf], "
+                         f"got {tuple(arr.tolist())}")
+    return np.where(np.isinf(arr), 0.0, 1.0 / arr)
+
+
+def _unit_quaternion(value) -> np.ndarray:
+    check.numeric(value, "orientation", "a quaternion (w, x, y, z)")
+    try:
+        q = np.asarray(value, dtype=np.float64).reshape(4)
+    except (TypeError, ValueError):
+        raise ValueError(f"orientation must be a quaternion (w, x, y, z), got {value!r}") from None
+    n = float(np.sqrt(q @ q)) if np.isfinite(q).all() else math.nan
+    if not (n > 1e-9 and math.isfinite(n)):
+        raise ValueError("orientation must be a finite, nonzero quaternion (w, x, y, z), "
+                         f"got {tuple(q.tolist())}")
+    return q / n
+
+
+class Body:
+    """Object-style handle on one body: reads and writes go straight to the arrays."""
+
+    __slots__ = ("bodies", "index")
+
+    def __init__(self, bodies: Bodies, index: int) -> None:
+        self.bodies = bodies
+        self.index = index
+
+    def __index__(self) -> int:
+        return self.index
+
+    def __repr__(self) -> str:
+        b, i = self.bodies, self.index
+        return (f"Body({i}, position={tuple(b.position[i].round(6).tolist())}, "
+                f"orientation={tuple(b.orientation[i].round(6).tolist())}, mass={self.mass:g})")
+
+    @property
+    def position(self) -> np.ndarray:
+        """Centre of mass [m], a writable view (3,)."""
+        return self.bodies.position[self.index]
+
+    @position.setter
+    def position(self, value) -> None:
+        self.bodies.position[self.index] = check.vec3(value, "position")
+
+    @property
+    def orientation(self) -> np.ndarray:
+        """Unit quaternion (w, x, y, z) (4,); set it through this property, which normalises it
+        and updates the world inertia."""
+        return self.bodies.orientation[self.index].copy()
+
+    @orientation.setter
+    def orientation(self, value) -> None:
+        q = _unit_quaternion(value)
+        i = self.index
+        self.bodies.orientation[i] = q
+        self.bodies.inv_inertia_world[i] = world_inv_inertia(q, self.bodies.inv_inertia[i])
+
+    @property
+    def velocity(self) -> np.ndarray:
+        """Linear velocity [m/s], a writable view (3,)."""
+        return self.bodies.velocity[self.index]
+
+    @velocity.setter
+    def velocity(self, value) -> None:
+        self.bodies.velocity[self.index] = check.vec3(value, "velocity")
+
+    @property
+    def angular_velocity(self) -> np.ndarray:
+        """World angular velocity [rad/s], a writable view (3,)."""
+        return self.bodies.angular_velocity[self.index]
+
+    @angular_velocity.setter
+    def angular_velocity(self, value) -> None:
+        self.bodies.angular_velocity[self.index] = check.vec3(value, "angular_velocity")
+
+    @property
+    def mass(self) -> float:
+        """Mass [kg]; ``inf`` when immovable."""
+        inv = float(self.bodies.inv_mass[self.index])
+        return 1.0 / inv if inv > 0 else math.inf
+
+    @property
+    def inertia(self) -> np.ndarray:
+        """Principal moments [kg m²] along the body axes (3,); ``inf`` on a locked axis."""
+        inv = self.bodies.inv_inertia[self.index]
+        with np.errstate(divide="ignore"):
+            return np.where(inv > 0, 1.0 / np.where(inv > 0, inv, 1.0), np.inf)
+
+    def add_force(self, force) -> None:
+        """Add a force [N] through the centre of mass."""
+        self.bodies.add_force(self.index, force)
+
+    def add_torque(self, torque) -> None:
+        """Add a torque [N m]."""
+        self.bodies.add_torque(self.index, torque)
+
+    def add_force_at_point(self, force, point) -> None:
+        """Add a force [N] at a world point [m] (force + torque)."""
+        self.bodies.add_force_at_point(self.index, force, point)
+
+    def point_velocity(self, point) -> np.ndarray:
+        """Velocity [m/s] of the body's material point at world ``point`` [m]: v + ω × r."""
+        r = check.vec3(point, "point") - self.position
+        return self.velocity + np.cross(self.angular_velocity, r)
+
+    def to_world(self, local) -> np.ndarray:
+        """World position [m] of a body-space point [m]."""
+        return self.position + world_rotation(self.orientation) @ check.vec3(local, "local")
