@@ -52,3 +52,14 @@ class FrameStats:
 
     def clear_history(self) -> None:
         self.history.clear()
+
+
+def particle_count(scene) -> str:
+    """The panel's particle count: the particles drawn, and the pool they come from when the
+    scene hides some (dead fireworks, spent rounds), e.g. "137 live / 1024"; a pool size alone
+    would read the same whatever is alive."""
+    n = scene.world.particles.count
+    if scene.hidden is None:
+        return f"{n}"
+    hidden = np.asarray(scene.hidden, bool).reshape(-1)[:n]
+    return f"{n - int(hidden.sum())} live / {n}"
