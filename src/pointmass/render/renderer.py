@@ -221,6 +221,7 @@ class Renderer:
         ln = self.programs["lines"]
         ln["u_view_proj"].write(vp.tobytes())
         ln["u_viewport"].value = (float(w), float(h))
+        ln["u_caps"].value = 1.0
         if n_lines:
             self._lines.vaos["lines"].render(moderngl.TRIANGLE_STRIP, vertices=4,
                                              instances=n_lines)
@@ -247,8 +248,10 @@ class Renderer:
         w, h = self.size
         if n_trails:
             ctx.blend_func = moderngl.SRC_ALPHA, moderngl.ONE
+            self.programs["lines"]["u_caps"].value = 0.0
             self._glow_trails.vaos["lines"].render(moderngl.TRIANGLE_STRIP, vertices=4,
                                                    instances=n_trails)
+            self.programs["lines"]["u_caps"].value = 1.0
         if n_spheres:
             ctx.blend_func = moderngl.ONE, moderngl.ONE
             g = self.programs["glow"]
