@@ -72,7 +72,8 @@ def build(p: Params) -> Scene:
                  handles={"params": p, "rng": np.random.default_rng(p.seed), "next": 0,
                           "type": np.zeros(POOL, int), "age": np.zeros(POOL),
                           "color": np.ones((POOL, 3)),
-                          "since_launch": p.launch_interval, "dts": [], "pressed": False})
+                          "since_launch": p.launch_interval, "launches": 0, "dts": [],
+                          "pressed": False})
 
 
 def apply(scene: Scene, p: Params) -> None:
@@ -133,7 +134,9 @@ def on_step(scene: Scene, dt: float) -> None:
     h["since_launch"] += dt
     if p.launch_interval > 0 and h["since_launch"] >= p.launch_interval:
         h["since_launch"] = 0.0
-        launch(scene, int(h["rng"].choice(SHOWY)))
+        # The show opens with a big burster, so its first second already has a burst.
+        launch(scene, int(h["rng"].choice(SHOWY)) if h["launches"] else 1)
+        h["launches"] += 1
     parts = scene.world.particles
     live = ~scene.hidden
     h["age"][live] -= dt
