@@ -144,7 +144,7 @@ def main() -> None:
         frames = []
         t0 = time.perf_counter()
         for _ in range(n):
-            rec.render(sim.scene, cam)
+            rec.render(sim.scene, cam, trails=sim.trails)
             frames.append(rec.read_rgb())
             sim.advance(1 / 30)
         fps_render_only = n / (time.perf_counter() - t0)

@@ -59,9 +59,9 @@ def ball_pit(count: int):
                 return sim, "demos/14_ball_pit.py"
     except (ValueError, FileNotFoundError):
         pass
-    from pointmass.app.scene_sim import SceneSimulation
+    from pointmass import Simulation
 
-    return SceneSimulation(pit_scene(count)), "bench pit scene"
+    return Simulation(pit_scene(count)), "bench pit scene"
 
 
 def measure(window, frames: int) -> dict:

@@ -87,8 +87,7 @@ def fire(scene: Scene, p: Params) -> None:
     h["kind"][i] = p.ammo
     scene.colors[i] = color
     scene.hidden[i] = False
-    # A fresh round starts a fresh trail.
-    scene.clear_trails(i)
+    # A fresh round starts a fresh trail (a slot's old trail ended when it left the list).
     if i not in scene.trails:
         scene.trails.append(i)
 

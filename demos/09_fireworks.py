@@ -99,8 +99,7 @@ def create(scene: Scene, kind: int, position, velocity, spread: float = 1.0,
     h["age"][i] = rng.uniform(age_lo, age_hi)
     h["color"][i] = COLORS[kind] if color is None else color
     scene.colors[i] = h["color"][i]
-    scene.clear_trails(i)                 # a reused slot: the old path is not this one's
-    if scene.hidden[i]:
+    if scene.hidden[i]:                   # a dead slot's trail ended when it was hidden
         scene.trails.append(i)
     scene.hidden[i] = False
 
@@ -119,7 +118,6 @@ def kill(scene: Scene, i: int) -> None:
     parts.inv_mass[i] = 0.0
     parts.velocity[i] = 0.0
     scene.trails.remove(i)
-    scene.clear_trails(i)
 
 
 def launch(scene: Scene, kind: int) -> None:

@@ -92,8 +92,11 @@ def move(scene: Scene, dx: float, dz: float) -> None:
     _place_box(scene)
 
 
+def on_keys_held(scene: Scene, keys: frozenset, dt: float) -> None:
+    walk(scene, keys, dt, move)  # held keys walk the load at 4 m/s
+
+
 def on_step(scene: Scene, dt: float) -> None:
-    walk(scene, dt, move)  # held keys walk the load at 4 m/s
     _place_box(scene)
 
 

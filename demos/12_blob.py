@@ -115,11 +115,15 @@ def apply(scene: Scene, p: Params) -> None:
     scene.handles["blob"].p = p
 
 
+def on_keys_held(scene: Scene, keys: frozenset, dt: float) -> None:
+    blob = scene.handles["blob"]
+    for key in keys & PUSH.keys():
+        blob.axis[:] = np.clip(blob.axis + PUSH[key], -1.0, 1.0)
+
+
 def on_step(scene: Scene, dt: float) -> None:
     blob = scene.handles["blob"]
     blob.axis *= 0.1**dt  # the push fades once the key is let go
-    for key in scene.keys_down & PUSH.keys():
-        blob.axis[:] = np.clip(blob.axis + PUSH[key], -1.0, 1.0)
     parts = scene.world.particles
     parts.position[:COUNT, 2] = 0.0  # the blob lives in the x–y plane
     parts.velocity[:COUNT, 2] = 0.0

@@ -89,7 +89,7 @@ def test_run_with_an_unreachable_display_is_one_line(monkeypatch, capsys):
 
     from pointmass.app.errors import NoDisplayError
 
-    def refuse(name, overrides, paused):
+    def refuse(sim, paused):
         raise NoDisplayError("cannot open display :42; try xvfb-run -a pointmass run DEMO")
 
     fake = types.ModuleType("pointmass.app")
@@ -102,16 +102,18 @@ def test_run_with_an_unreachable_display_is_one_line(monkeypatch, capsys):
 
 
 def test_run_dispatches_to_the_app(monkeypatch):
-    """With a display, ``run`` calls pointmass.app.run_demo(name, overrides, paused)."""
+    """With a display, ``run`` builds the demo once and hands that Simulation to
+    pointmass.app.run_demo."""
     import types
 
     calls = []
     fake = types.ModuleType("pointmass.app")
-    fake.run_demo = lambda name, overrides, paused: calls.append((name, overrides, paused))
+    fake.run_demo = lambda sim, paused: calls.append((sim, paused))
     monkeypatch.setitem(sys.modules, "pointmass.app", fake)
     monkeypatch.setenv("DISPLAY", ":99")
     assert main(["run", "side_library", "--set", "spin=10", "--paused"]) == 0
-    assert calls == [("side_library", ["spin=10"], True)]
+    [(sim, paused)] = calls
+    assert sim.demo.name == "side_library" and sim.params.spin == 10 and paused
 
 
 def test_run_without_the_viewer_extra_says_how_to_get_it(monkeypatch, capsys):

@@ -24,6 +24,7 @@ from .params import choice, tweak
 from .particles import Particle, Particles
 from .probes import Probe
 from .scene import BoxVisual, CameraHint, PlaneVisual, Scene
+from .simulation import Simulation
 from .springs import AnchoredBungee, AnchoredSpring, Bungee, FakeSpring, Spring
 from .stability import UnstableStepError
 from .world import StepStats, World
@@ -32,7 +33,8 @@ __version__ = "0.1.0"
 
 
 def show(scene, **options):
-    """Open a window on ``scene`` (a Scene or a demo Simulation): see ``pointmass.app.show``.
+    """Open a window on ``scene`` (a Scene, a demo name or a Simulation): see
+    ``pointmass.app.show``.
 
     Imports the viewer (pyglet, imgui-bundle) only when called, so ``import pointmass`` stays
     light and works with no display.
@@ -49,6 +51,7 @@ __all__ = [
     "AnchoredBungee", "AnchoredCable", "AnchoredRod", "AnchoredSpring", "Box", "BoxVisual",
     "Bungee", "Buoyancy", "Cable", "CameraHint", "ContactBuffer", "ContactGenerator",
     "CustomForce", "Drag", "FakeSpring", "ForceGenerator", "Gravity", "Ground", "Particle",
-    "Particles", "Plane", "PlaneVisual", "Probe", "Rod", "Scene", "SphereCollisions", "Spring",
+    "Particles", "Plane", "PlaneVisual", "Probe", "Rod", "Scene", "Simulation", "SphereCollisions",
+    "Spring",
     "StepStats", "UnstableStepError", "World", "choice", "probes", "show", "stability", "tweak",
 ]

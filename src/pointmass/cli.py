@@ -118,11 +118,10 @@ def build_parser() -> argparse.ArgumentParser:
 
 def _simulation(args):
     """Load the demo and apply ``--set``; bad names and values become UsageError."""
-    from .demo import Simulation, load_demo
+    from .simulation import Simulation
 
     try:
-        demo = load_demo(args.demo)
-        return Simulation(demo, overrides=args.overrides)
+        return Simulation(args.demo, overrides=args.overrides)
     except ValueError as exc:
         raise UsageError(str(exc)) from None
 
@@ -150,18 +149,7 @@ def has_display() -> bool:
 
 
 def cmd_run(args) -> int:
-    from . import params as params_mod
-    from .demo import load_demo
-
-    try:
-        demo = load_demo(args.demo)
-        p = demo.default_params()
-        if p is not None:
-            params_mod.apply_overrides(p, args.overrides)
-        elif args.overrides:
-            raise ValueError(f"demo {demo.name!r} has no parameters to --set")
-    except ValueError as exc:
-        raise UsageError(str(exc)) from None
+    sim = _simulation(args)  # loaded and built once; bad names and --set values fail here
     if not has_display():
         # Checked before pyglet is imported: importing it with no display raises. The advice
         # fits what is installed: `record` only works with the render extra.
@@ -174,7 +162,7 @@ def cmd_run(args) -> int:
             f"a virtual display: `xvfb-run -a pointmass run {args.demo}`")
     extras.require("viewer", "pointmass run (a window)")
     from .app import run_demo
-    run_demo(args.demo, overrides=list(args.overrides), paused=args.paused)
+    run_demo(sim, paused=args.paused)
     return 0
 
 
@@ -203,7 +191,7 @@ def cmd_render(args) -> int:
 
     rgb = render_frame(sim, size, time=args.time, show_contacts=args.contacts)
     save_image(rgb, out)
-    print(f"wrote {out} ({size[0]}x{size[1]}, t = {sim.scene.time:.3f} s)")
+    print(f"wrote {out} ({size[0]}x{size[1]}, t = {sim.time:.3f} s)")
     return 0
 
 

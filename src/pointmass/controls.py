@@ -1,12 +1,13 @@
 """Keyboard steering for demos: WASD as a direction, held or pressed (no GL, no window).
 
-A demo that moves something with WASD binds the presses with ``wasd_keys`` and reads held keys
-from ``scene.keys_down`` (kept up to date by the viewer) with ``held_direction``:
+A demo that moves something with WASD binds the presses with ``wasd_keys`` and walks while keys
+are held in its ``on_keys_held`` hook (the Simulation calls it before each step with the keys
+held now):
 
     KEYS = wasd_keys(lambda scene, p, dx, dz: move(scene, 0.5 * dx, 0.5 * dz), "the load")
 
-    def on_step(scene, dt):
-        walk(scene, dt, move)          # held keys move it at 4 m/s
+    def on_keys_held(scene, keys, dt):
+        walk(scene, keys, dt, move)    # held keys move it at 4 m/s
 """
 
 from __future__ import annotations
@@ -30,16 +31,17 @@ def wasd_keys(action: Callable[[Scene, object, float, float], None],
     return {key: (f"Move {what} {_NAMES[key]}", binding(key)) for key in WASD}
 
 
-def held_direction(scene: Scene) -> tuple[float, float]:
-    """The (x, z) direction of the WASD keys held now (each component in [-1, 1])."""
-    dx = sum(WASD[k][0] for k in scene.keys_down if k in WASD)
-    dz = sum(WASD[k][1] for k in scene.keys_down if k in WASD)
+def held_direction(keys) -> tuple[float, float]:
+    """The (x, z) direction of the WASD keys among ``keys`` (each component in [-1, 1])."""
+    dx = sum(WASD[k][0] for k in keys if k in WASD)
+    dz = sum(WASD[k][1] for k in keys if k in WASD)
     return max(-1.0, min(1.0, dx)), max(-1.0, min(1.0, dz))
 
 
-def walk(scene: Scene, dt: float, move: Callable[[Scene, float, float], None],
+def walk(scene: Scene, keys, dt: float, move: Callable[[Scene, float, float], None],
          speed: float = 4.0) -> None:
-    """Call ``move(scene, dx, dz)`` with the step [m] that held WASD keys make in ``dt`` [s]."""
-    dx, dz = held_direction(scene)
+    """Call ``move(scene, dx, dz)`` with the step [m] that the held WASD ``keys`` make in
+    ``dt`` [s] at ``speed`` [m/s]."""
+    dx, dz = held_direction(keys)
     if dx or dz:
         move(scene, speed * dx * dt, speed * dz * dt)

@@ -7,7 +7,10 @@ A demo is a Python file in ``demos/`` (import-safe: no side effects at import) w
 - ``Params``: a dataclass of ``tweak``/``choice`` fields (optional);
 - ``apply(scene, params)``: push live parameter changes into the running scene (optional);
 - ``on_step(scene, dt)``: called before every physics step (optional). It runs per *step*, not per
-  drawn frame, so a demo behaves the same in a window, a recording and a test;
+  drawn frame, so a demo behaves the same in a window, a recording and a test; the time is
+  ``scene.world.time`` (the only clock);
+- ``on_keys_held(scene, keys, dt)``: called before every step while keys are held (optional;
+  ``keys`` is a frozenset of names such as "W"), for controls that act as long as a key is down;
 - ``check(scene)``: an oracle the tests run after a few simulated seconds (optional);
 - ``KEYS``: ``{"1": ("Pistol", fn(scene, params)), ...}`` key bindings (optional). Key names
   are pyglet-style symbol names ("1", "W", "SPACE", "ENTER") or "CLICK" for a click in the scene.
@@ -15,9 +18,7 @@ A demo is a Python file in ``demos/`` (import-safe: no side effects at import) w
 
 from __future__ import annotations
 
-import dataclasses
 import importlib.util
-import math
 import re
 import sys
 from collections.abc import Callable
@@ -26,9 +27,11 @@ from pathlib import Path
 from types import ModuleType
 from typing import Any
 
-from . import params as params_mod
 from .scene import Scene
-from .world import StepStats
+from .simulation import Simulation
+
+__all__ = ["Demo", "Simulation", "demo_dir", "demo_name", "demo_paths", "list_demos",
+           "load_demo"]
 
 _ORDER_PREFIX = re.compile(r"^\d+_")
 
@@ -121,78 +124,3 @@ def load_demo(name_or_path: str | Path) -> Demo:
 
 def list_demos() -> list[Demo]:
     return [load_demo(p) for p in demo_paths()]
-
-
-class Simulation:
-    """One running demo: its parameters, its scene, and how time moves it forward.
-
-    The viewer, the recorder and the tests all drive demos through this class, so a demo does
-    the same thing everywhere: ``on_step`` before each fixed step, trails after each frame.
-    """
-
-    def __init__(self, demo: Demo, params: Any = None, overrides: list[str] | None = None):
-        self.demo = demo
-        self.params = params if params is not None else demo.default_params()
-        if self.params is not None:
-            params_mod.validate(self.params)
-            params_mod.apply_overrides(self.params, overrides or [])
-        elif overrides:
-            raise ValueError(f"demo {demo.name!r} has no parameters to --set")
-        self.scene = demo.build(self.params)
-        self.last_stats: StepStats | None = None
-
-    @property
-    def world(self):
-        return self.scene.world
-
-    def rebuild(self) -> None:
-        """Build the scene again from the current parameters (reset)."""
-        self.scene = self.demo.build(self.params)
-        self.last_stats = None
-
-    def set_param(self, name: str, value: Any) -> None:
-        """Change one parameter: live ones go through the demo's ``apply``, others rebuild."""
-        spec = params_mod.set_param(self.params, name, value)
-        apply = self.demo.hook("apply")
-        if spec.rebuild or apply is None:
-            self.rebuild()
-        else:
-            apply(self.scene, self.params)
-
-    def press(self, key: str) -> bool:
-        """Run the demo's binding for ``key``; False when the demo binds nothing to it."""
-        binding = self.demo.keys.get(key)
-        if binding is None:
-            return False
-        binding[1](self.scene, self.params)
-        return True
-
-    def step(self, dt: float | None = None) -> StepStats:
-        """One fixed physics step of ``dt`` (default: the scene's)."""
-        dt = self.scene.dt if dt is None else dt
-        on_step = self.demo.hook("on_step")
-        if on_step is not None:
-            on_step(self.scene, dt)
-        self.last_stats = self.scene.world.step(dt)
-        self.scene.time += dt
-        return self.last_stats
-
-    def advance(self, seconds: float) -> int:
-        """Advance simulated time by exactly ``seconds`` in equal steps no longer than the scene's
-        dt (a video frame at any fps); records trails once at the end. Returns the step count."""
-        if not seconds > 0:
-            raise ValueError(f"seconds must be > 0, got {seconds}")
-        steps = max(1, math.ceil(seconds / self.scene.dt - 1e-9))
-        for _ in range(steps):
-            self.step(seconds / steps)
-        self.scene.record_trails()
-        return steps
-
-    def check(self) -> None:
-        """Run the demo's oracle, if it has one."""
-        check = self.demo.hook("check")
-        if check is not None:
-            check(self.scene)
-
-    def param_values(self) -> dict[str, Any]:
-        return dataclasses.asdict(self.params) if self.params is not None else {}

@@ -18,6 +18,7 @@ below cover positions, velocities, energies, contact counts and link lengths. Ex
 
 from __future__ import annotations
 
+from collections import deque
 from collections.abc import Callable
 from pathlib import Path
 
@@ -30,18 +31,23 @@ class Probe:
     """Named quantities sampled after every ``World.step`` (add it with ``world.add_probe``).
 
     Args:
+        max_samples: Keep only the latest this many samples (a window's live plot), or None
+            to keep everything (a notebook's run).
         quantities: name = function of the world returning a float or a vector.
     """
 
-    def __init__(self, **quantities: Quantity) -> None:
+    def __init__(self, *, max_samples: int | None = None, **quantities: Quantity) -> None:
         if not quantities:
             raise ValueError("a Probe needs at least one quantity, e.g. Probe(y=position(0, 1))")
         for name, fn in quantities.items():
             if not callable(fn):
                 raise TypeError(f"quantity {name!r} must be a function of the world, got {fn!r}")
+        if max_samples is not None and not (isinstance(max_samples, int) and max_samples >= 1):
+            raise ValueError(f"max_samples must be an integer >= 1 or None, got {max_samples!r}")
         self.quantities = dict(quantities)
-        self._t: list[float] = []
-        self._values: dict[str, list] = {name: [] for name in quantities}
+        self.max_samples = max_samples
+        self._t: deque[float] = deque(maxlen=max_samples)
+        self._values: dict[str, deque] = {name: deque(maxlen=max_samples) for name in quantities}
 
     def record(self, world) -> None:
         """Sample every quantity now (the world calls this after each step)."""
@@ -64,6 +70,8 @@ class Probe:
 
     def __getitem__(self, name: str) -> np.ndarray:
         """The samples of ``name``: shape (T,) for a number, (T, K) for a vector."""
+        if name not in self._values:
+            raise KeyError(f"this probe has no quantity {name!r}; it has {self.names()}")
         values = self._values[name]
         return np.array(values) if values else np.zeros(0)
 

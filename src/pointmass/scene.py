@@ -96,9 +96,11 @@ class Scene:
         trail_length: How many past positions a trail keeps.
         boxes, planes: Extra geometry.
         plots: Named quantities for the viewer's live plot: name -> fn(scene) -> float.
-        handles: Anything the demo wants to find again in ``apply``/``on_frame``/``check``.
-        keys_down: Keys held right now (names like "W", "A"), kept up to date by the viewer.
-        time: Simulated time [s] since the scene was built (advanced by ``advance``).
+        handles: Anything the demo wants to find again in ``apply``/``on_step``/``check``.
+        dt: The fixed physics step [s] every driver uses for this scene.
+
+    What a running scene does over time (held keys, recorded trails, probes) belongs to the
+    ``Simulation`` that runs it, not to the Scene: one Scene, many ways to run it.
     """
 
     world: World
@@ -115,11 +117,7 @@ class Scene:
     planes: list[PlaneVisual] = field(default_factory=list)
     plots: dict[str, Callable[[Scene], float]] = field(default_factory=dict)
     handles: dict[str, Any] = field(default_factory=dict)
-    keys_down: set[str] = field(default_factory=set)
-    time: float = 0.0
     dt: float = 1.0 / 120.0
-    """Physics time step [s] the viewer and the recorder use for this scene."""
-    _trail_buffer: dict[int, list] = field(default_factory=dict, repr=False)
     sky: str = "day"
     """The backdrop: "day" (grey sky, light ground grid) or "night" (a dark gradient and a
     dimmed grid, so glowing particles read)."""
@@ -132,26 +130,10 @@ class Scene:
             p = self.world.particles
             self.camera = CameraHint.framing(p.position, p.radius)
 
-    def record_trails(self) -> None:
-        """Append the current positions of the trailed particles (called once per frame)."""
-        pos = self.world.particles.position
-        for i in self.trails:
-            buf = self._trail_buffer.setdefault(i, [])
-            buf.append(pos[i].copy())
-            if len(buf) > self.trail_length:
-                del buf[: len(buf) - self.trail_length]
-
-    def clear_trails(self, index: int | None = None) -> None:
-        """Forget the recorded path of one trailed particle (a reused slot), or of all."""
-        if index is None:
-            self._trail_buffer.clear()
-        else:
-            self._trail_buffer.pop(index, None)
-
-    def trail_points(self, index: int) -> np.ndarray:
-        """The recorded path of one trailed particle, shape (T, 3)."""
-        buf = self._trail_buffer.get(index, [])
-        return np.array(buf) if buf else np.zeros((0, 3))
+    @property
+    def time(self) -> float:
+        """Simulated seconds since the world was made: ``world.time``, the only clock."""
+        return self.world.time
 
     def particle_colors(self) -> np.ndarray:
         """Colors for every particle, shape (N, 3): ``colors`` padded with the default palette."""

@@ -7,8 +7,7 @@ import numpy as np
 import pytest
 
 import pointmass.app as app
-from pointmass import Scene, World
-from pointmass.app.scene_sim import SceneSimulation
+from pointmass import Scene, Simulation, World
 
 
 def test_importing_the_app_opens_no_display_and_loads_no_pyglet():
@@ -34,22 +33,22 @@ def test_no_display_is_a_clear_error(monkeypatch):
 
 
 def test_show_refuses_other_things():
-    with pytest.raises(TypeError, match="Scene or a Simulation"):
+    with pytest.raises(TypeError, match="Scene, a demo name or a Simulation"):
         app.show(42)
 
 
-def test_scene_simulation_steps_and_resets():
+def test_a_bare_scene_simulation_steps_and_resets():
     world = World()
     world.add_particle((0, 5, 0), (1, 0, 0), mass=2.0)
-    sim = SceneSimulation(Scene(world))
+    sim = Simulation(Scene(world))
     for _ in range(60):
         sim.step()
-    assert sim.scene.time == pytest.approx(0.5)
+    assert sim.time == pytest.approx(0.5) and world.time == sim.time
     assert world.particles.position[0, 1] < 5
     assert sim.press("SPACE") is False
     sim.rebuild()
     np.testing.assert_allclose(world.particles.position[0], (0, 5, 0))
     np.testing.assert_allclose(world.particles.velocity[0], (1, 0, 0))
-    assert sim.scene.time == 0.0
+    assert sim.time == 0.0
     with pytest.raises(ValueError, match="no parameters"):
         sim.set_param("x", 1)

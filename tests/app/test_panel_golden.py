@@ -16,20 +16,25 @@ class Host:
     """What the panel needs from the window, with fixed numbers."""
 
     def __init__(self, sim):
-        from pointmass.app.clock import FixedStepClock
+        from types import SimpleNamespace
+
+        from pointmass import Probe
+        from pointmass.app.clock import PlaybackClock
         from pointmass.app.keymap import KeyMap
         from pointmass.app.stats import FrameStats
 
         self.sim = sim
-        self.clock = FixedStepClock(sim.scene.dt)
+        self.clock = PlaybackClock()
         self.keymap = KeyMap(sim.demo.keys)
         self.stats = FrameStats()
         s = self.stats
         s.fps, s.realtime, s.step_ms, s.gui_ms = 60.0, 1.0, 0.25, 0.6
+        # The live plots' probe, fed known curves (a fake world that only has a time).
+        self.probe = Probe(kinetic=lambda w: 10 * np.exp(-w.time),
+                           potential=lambda w: 10 - 10 * np.exp(-w.time),
+                           **{"plot:v_y": lambda w: -5 * (1 - np.exp(-2 * w.time))})
         for k in range(120):
-            t = k / 60
-            s.sample({"t": t, "kinetic": 10 * np.exp(-t), "potential": 10 - 10 * np.exp(-t),
-                      "total": 10.0, "plot:v_y": -5 * (1 - np.exp(-2 * t))})
+            self.probe.record(SimpleNamespace(time=k / 60))
         self.show_help = False
         self.recording = False
         self.calls = []

@@ -181,7 +181,7 @@ def test_screenshot_matches_the_offscreen_render(open_viewer, sim, in_egl, tmp_p
 
     def offscreen(ctx):
         r = Renderer(ctx, size)
-        r.render(sim.scene, camera)
+        r.render(sim.scene, camera, trails=sim.trails)
         rgb = r.read_rgb()
         r.release()
         return rgb
@@ -220,18 +220,17 @@ def test_escape_closes_without_gl_errors(open_viewer, sim):
 
 
 def test_show_wraps_a_bare_scene_and_reset_restores_it(open_viewer):
-    from pointmass import Ground, Scene, World
-    from pointmass.app.scene_sim import SceneSimulation
+    from pointmass import Ground, Scene, Simulation, World
 
     world = World()
     world.add_particle((0, 2, 0), mass=1.0, radius=0.2)
     world.add(Ground())
-    sim = SceneSimulation(Scene(world))
+    sim = Simulation(Scene(world))
     w = open_viewer(sim, paused=False)
     frames(w, 20)
     assert world.particles.position[0, 1] < 2.0
     press_key(w, "R")
-    assert world.particles.position[0, 1] == 2.0 and sim.scene.time == 0.0
+    assert world.particles.position[0, 1] == 2.0 and sim.time == 0.0
     frames(w, 2)
 
 

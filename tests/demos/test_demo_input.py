@@ -13,7 +13,7 @@ WALK = [({"A"}, 45), ({"D"}, 90), ({"W", "D"}, 30), ({"S"}, 30), (set(), 30)]
 
 
 def hold(sim: Simulation, keys: set[str], frames: int) -> None:
-    sim.scene.keys_down = set(keys)
+    sim.keys_down = set(keys)
     for _ in range(frames):
         sim.advance(1.0 / 30.0)
         sim.check()

@@ -59,7 +59,10 @@ def cube_scene() -> pm.Scene:
 
 def night_scene() -> pm.Scene:
     """A frozen firework burst at night: twelve glowing sparks flying out of a centre, each with
-    a short trail, and a rising rocket; two colors overlap where the sparks cross."""
+    a short trail (recorded in ``handles["trails"]``), and a rising rocket; two colors overlap
+    where the sparks cross."""
+    from pointmass.trails import Trails
+
     world = pm.World(gravity=(0.0, 0.0, 0.0))
     angles = np.linspace(0.0, 2.0 * np.pi, 12, endpoint=False)
     out = np.c_[np.cos(angles), np.sin(angles), 0.3 * np.sin(3 * angles)]
@@ -71,9 +74,11 @@ def night_scene() -> pm.Scene:
                      camera=pm.CameraHint(target=(0, 1.8, 0), distance=6, yaw=20, pitch=5))
     pos = world.particles.position
     end = pos.copy()
-    for k in range(6):                       # the paths that led here, oldest first
+    trails = scene.handles["trails"] = Trails()
+    for k in range(5):                       # the paths that led here, oldest first
         t = (k + 1) / 6
         pos[:12] = centre + 1.4 * t * out
         pos[12] = end[12] - (1 - t) * np.array([0.0, 0.8, 0.0])
-        scene.record_trails()
+        trails.record(scene)
+    pos[:] = end                             # now: the trails end at the particles
     return scene

@@ -35,8 +35,8 @@ def _sparks(positions, *, glow=True, sky="night", color=(1.0, 0.5, 0.2)) -> pm.S
                     camera=pm.CameraHint(target=(0, 2, 0), distance=8, yaw=20, pitch=10))
 
 
-def _shot(renderer, scene) -> np.ndarray:
-    renderer.render(scene, _camera(scene))
+def _shot(renderer, scene, trails=None) -> np.ndarray:
+    renderer.render(scene, _camera(scene), trails=trails)
     return renderer.read_rgb().astype(float)
 
 
@@ -123,15 +123,18 @@ def test_night_sky_is_dark_and_unknown_skies_are_refused(renderer):
 
 def test_trails_of_live_glowing_particles_are_light_streaks(renderer):
     """A glowing particle's trail adds light along its path; a hidden one's is not drawn."""
+    from pointmass.trails import Trails
+
     scene = _sparks([(-1.5, 2.0, 0.0)], color=(0.2, 0.6, 1.0))
     scene.trails, scene.trail_length = [0], 8
+    trails = Trails()
     pos = scene.world.particles.position
     for k in range(8):                       # a path from x = -1.5 to x = 1.3, left to right
         pos[0] = (-1.5 + 0.4 * k, 2.0, 0.0)
-        scene.record_trails()
+        trails.record(scene)
     cam = _camera(scene)
     mid = cam.project([(-0.1, 2.0, 0.0)], SIZE)[0].astype(int)   # on the trail, off the head
-    streak = _shot(renderer, scene)[mid[1], mid[0]]
+    streak = _shot(renderer, scene, trails)[mid[1], mid[0]]
     scene.hidden = np.array([True])
-    gone = _shot(renderer, scene)[mid[1], mid[0]]
+    gone = _shot(renderer, scene, trails)[mid[1], mid[0]]
     assert streak[2] > gone[2] + 40 and streak[2] > streak[0]

@@ -31,7 +31,7 @@ def _shot(renderer, scene, **options):
 def test_golden_scene(renderer, golden, name):
     """Render each reference scene and compare it with its golden PNG."""
     scene = getattr(scenes, f"{name}_scene")()
-    golden(name, _shot(renderer, scene))
+    golden(name, _shot(renderer, scene, trails=scene.handles.get("trails")))
 
 
 def test_golden_side_library_demo(renderer, golden):

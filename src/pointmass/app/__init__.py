@@ -48,30 +48,29 @@ def open_window(sim, *, title: str = "pointmass", paused: bool = False, size=(12
         raise
 
 
-def run_demo(name: str, overrides: list[str] | None = None, paused: bool = False) -> None:
-    """Open a window on the demo ``name`` (with ``--set`` style ``overrides``) and run it
-    until the window is closed."""
-    from ..demo import Simulation, load_demo
+def run_demo(name_or_sim, overrides: list[str] | None = None, paused: bool = False) -> None:
+    """Open a window on a demo (a name, with ``--set`` style ``overrides``, or a Simulation
+    already made, as ``pointmass run`` passes) and run it until the window is closed."""
+    from ..simulation import Simulation
 
-    demo = load_demo(name)
-    sim = Simulation(demo, overrides=overrides)
-    window = open_window(sim, title=f"pointmass - {demo.title}", paused=paused,
-                         demo_name=demo.name)
+    sim = name_or_sim if isinstance(name_or_sim, Simulation) else \
+        Simulation(name_or_sim, overrides=overrides)
+    window = open_window(sim, title=sim.title, paused=paused,
+                         demo_name=sim.demo.name if sim.demo is not None else None)
     window.run()
 
 
 def show(scene_or_simulation, *, paused: bool = False, title: str | None = None) -> None:
-    """Open a window on a Scene built in a script (or a demo Simulation) and run it until the
-    window is closed. Reset (Backspace) puts a bare Scene's particles back where they started."""
+    """Open a window on a Scene built in a script, a demo name or a Simulation, and run it
+    until the window is closed. Reset (Backspace) puts a bare Scene's world back as it was
+    when the window opened."""
     from ..scene import Scene
-    from .scene_sim import SceneSimulation
+    from ..simulation import Simulation
 
     sim = scene_or_simulation
-    if isinstance(sim, Scene):
-        sim = SceneSimulation(sim, title or "pointmass")
-    elif not hasattr(sim, "step") or not hasattr(sim, "scene"):
-        raise TypeError(f"show() takes a Scene or a Simulation, got {type(sim).__name__}")
-    if title is None:
-        demo = getattr(sim, "demo", None)
-        title = f"pointmass - {demo.title}" if demo is not None else "pointmass"
-    open_window(sim, title=title, paused=paused).run()
+    if isinstance(sim, (Scene, str)):
+        sim = Simulation(sim, title=title)
+    elif not isinstance(sim, Simulation):
+        raise TypeError(f"show() takes a Scene, a demo name or a Simulation, got "
+                        f"{type(sim).__name__}")
+    open_window(sim, title=title or sim.title, paused=paused).run()

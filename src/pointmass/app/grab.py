@@ -1,10 +1,14 @@
 """Grabbing a particle with the mouse: a damped spring toward the cursor (no GL, no pyglet).
 
-The spring force is scaled by the particle's mass, F = m·(ω²·(target − x) − 2ζω·v), so every
-particle follows the cursor at the same rate ω whatever its mass (gz-sim's MouseDrag, bullet's
-point-to-point pick). ζ = 1 is critical damping: it follows without ringing. The target moves in
-the camera-facing plane through the particle where it was grabbed, so dragging the mouse moves
-it across the screen, never toward or away from the eye.
+The spring is scaled to what resists the pull, not only to the grabbed particle: the mass of
+everything rods and cables tie to it (a platform moves as one truss) and the stiffness of the
+springs attached to it (a cloth node is held by four). So F = k·(target − x) − c·v with
+k = max(M·ω², 2·Σk_springs) and c = 2ζ·√(k·M): a lone particle follows the cursor at rate ω
+(gz-sim's MouseDrag, bullet's point-to-point pick), a cloth node gives way to it visibly. Both are
+capped so the explicit step stays stable for the grabbed particle alone (h²k/m ≤ 1/2,
+h·c/m ≤ 1/2), which is what lets the grab be this strong without blowing a light node away.
+ζ = 1 is critical damping. The target moves in the camera-facing plane through the particle
+where it was grabbed, so dragging moves it across the screen, never toward the eye.
 """
 
 from __future__ import annotations
@@ -13,26 +17,71 @@ import numpy as np
 
 from ..forces import ForceGenerator
 from ..particles import Particles
+from ..springs import _SpringSet
 
 #: Colour of the spring line [RGB].
 SPRING_COLOR = (1.0, 0.85, 0.2)
 
 
+def resistance(world, index: int) -> tuple[float, float]:
+    """(mass [kg], stiffness [N/m]) resisting a pull on particle ``index``: the movable mass of
+    the particles that rods and cables join to it (they move together), and the spring
+    constants of the springs and bungees attached to it."""
+    p = world.particles
+    links = [g for g in world.contact_generators
+             if getattr(g, "kind", None) in ("rod", "cable") and hasattr(g, "b")]
+    cluster, frontier = {index}, [index]
+    while frontier:
+        i = frontier.pop()
+        for g in links:
+            a, b = np.asarray(g.a), np.asarray(g.b)
+            for j in np.concatenate([b[a == i], a[b == i]]).tolist():
+                if j not in cluster:
+                    cluster.add(j)
+                    frontier.append(j)
+    members = np.fromiter(cluster, dtype=np.int64)
+    w = p.inv_mass[members]
+    mass = float(np.sum(1.0 / w[w > 0])) if (w > 0).any() else 0.0
+    stiffness = 0.0
+    for g in world.forces:
+        if isinstance(g, _SpringSet):      # springs and bungees, two-ended or anchored
+            ends = [g.a, g.b] if hasattr(g, "b") else [g.particles]
+            for e in ends:
+                stiffness += float(g.spring_constant[np.asarray(e) == index].sum())
+    return mass, stiffness
+
+
 class MouseSpring(ForceGenerator):
-    """Pulls one particle toward ``target`` [m] with a mass-scaled, damped spring.
+    """Pulls one particle toward ``target`` [m] with a damped spring scaled to what resists.
 
     Args:
         index: The grabbed particle.
         target: Where the cursor points [m], shape (3,); update it while dragging.
-        omega: Natural angular frequency [rad/s]; keep ω·dt well under 2 (semi-implicit Euler).
+        omega: Natural angular frequency [rad/s] of the pull on the resisting mass.
         zeta: Damping ratio (1: critical).
+        mass, stiffness: What resists the pull (``resistance``); by default the particle's
+            own mass and no springs.
     """
 
-    def __init__(self, index: int, target, *, omega: float = 12.0, zeta: float = 1.0) -> None:
+    bounded = True  # caps its own stiffness and damping against the step (stability.py)
+
+    def __init__(self, index: int, target, *, omega: float = 12.0, zeta: float = 1.0,
+                 mass: float | None = None, stiffness: float = 0.0) -> None:
         self.index = int(index)
         self.target = np.asarray(target, dtype=np.float64).reshape(3).copy()
         self.omega = float(omega)
         self.zeta = float(zeta)
+        self.mass = mass
+        self.stiffness = float(stiffness)
+
+    def gains(self, particles: Particles, dt: float) -> tuple[float, float]:
+        """(k [N/m], c [N·s/m]) for a step of ``dt`` [s], capped for stability."""
+        m = 1.0 / particles.inv_mass[self.index]
+        resisting = max(self.mass or m, m)
+        k = max(resisting * self.omega**2, 2.0 * self.stiffness)
+        k = min(k, 0.5 * m / dt**2)
+        c = min(2.0 * self.zeta * np.sqrt(k * resisting), 0.5 * m / dt)
+        return k, c
 
     def validate(self, particles: Particles) -> None:
         if not 0 <= self.index < particles.count:
@@ -44,9 +93,9 @@ class MouseSpring(ForceGenerator):
         w = particles.inv_mass[i]
         if w <= 0:                   # immovable: nothing to pull
             return
+        k, c = self.gains(particles, dt)
         x, v = particles.position[i], particles.velocity[i]
-        pull = self.omega**2 * (self.target - x) - 2.0 * self.zeta * self.omega * v
-        particles.force[i] += pull / w
+        particles.force[i] += k * (self.target - x) - c * v
 
 
 def plane_point(origin, direction, point, normal) -> np.ndarray | None:
@@ -69,7 +118,8 @@ class Grab:
         pos = world.particles.position[index].copy()
         self.normal = np.asarray(normal, dtype=np.float64)
         self.plane_point = pos
-        self.spring = world.add(MouseSpring(index, pos))
+        mass, stiffness = resistance(world, index)
+        self.spring = world.add(MouseSpring(index, pos, mass=mass, stiffness=stiffness))
 
     @property
     def index(self) -> int:

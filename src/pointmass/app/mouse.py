@@ -32,8 +32,9 @@ class MouseControls:
         clock: Seconds for double-click timing (a parameter so tests can control it).
     """
 
-    def __init__(self, camera, simulation, size, clock=time.perf_counter) -> None:
+    def __init__(self, camera, simulation, size, clock=time.perf_counter, say=None) -> None:
         self.camera = camera
+        self.say = say or (lambda text: None)   # tells the user (the viewer's panel line)
         self.sim = simulation
         self.size = size
         self.clock = clock
@@ -53,6 +54,8 @@ class MouseControls:
                 self.mode = "grab"
             else:
                 self.mode = None
+                self.say("nothing to grab there: Ctrl+drag starts on a particle" if index is None
+                         else f"particle {index} is fixed in place: it cannot be grabbed")
         elif button == "right" or button == "middle" or (button == "left" and shift):
             self.mode = "pan"
         elif button == "left":

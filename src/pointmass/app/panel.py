@@ -2,12 +2,14 @@
 help overlay. It only *draws and reports*: changes go through its host (the window), which owns
 the simulation, so a rebuild also cancels a grab and clears the plot.
 
-The host provides: ``sim``, ``clock`` (FixedStepClock), ``stats`` (FrameStats), ``keymap``,
-``show_help``, ``recording``, ``set_param(name, value)`` and ``act(action)``.
+The host provides: ``sim``, ``clock`` (PlaybackClock), ``stats`` (FrameStats), ``probe`` (the
+live plots' Probe), ``keymap``, ``show_help``, ``recording``, ``set_param(name, value)`` and
+``act(action)``.
 """
 
 from __future__ import annotations
 
+import numpy as np
 from imgui_bundle import imgui, implot
 
 from ..params import param_specs
@@ -157,7 +159,7 @@ class Panel:
             ("real-time factor", f"{s.realtime:.2f}x" + ("  (paused)" if host.clock.paused
                                                          else "")),
             ("frames/s", f"{s.fps:.1f}"),
-            ("physics per step", f"{s.step_ms:.2f} ms  (dt {1e3 * host.clock.dt:.2f} ms)"),
+            ("physics per step", f"{s.step_ms:.2f} ms  (dt {1e3 * host.sim.dt:.2f} ms)"),
             ("panel per frame", f"{s.gui_ms:.2f} ms"),
             ("particles", particle_count(scene)),
             ("contacts", f"{contacts}" + (f"  ({last.mode})" if last is not None else "")),
@@ -168,31 +170,31 @@ class Panel:
             imgui.text(f"{name:<18}{value}")
 
     def _plots(self, host) -> None:
-        stats = host.stats
-        t = stats.series("t")
+        probe = host.probe
+        t = probe.t if probe is not None else ()
         if len(t) < 2:
             imgui.text_disabled("(runs when the simulation does)")
             return
-        flags = implot.AxisFlags_.auto_fit
+        kinetic, potential = probe["kinetic"], probe["potential"]
+        energies = {"kinetic": kinetic, "potential": potential, "total": kinetic + potential}
         if implot.begin_plot("##energy", imgui.ImVec2(-1, 130)):
-            implot.setup_axes("t [s]", "energy [J]", flags, flags)
+            _setup_axes("t [s]", "energy [J]", t, energies.values())
             implot.setup_legend(implot.Location_.north_west)
-            for name in ("kinetic", "potential", "total"):
-                ys = stats.series(name)
-                if len(ys) == len(t):
-                    implot.plot_line(name, t, ys)
+            for name, ys in energies.items():
+                implot.plot_line(name, t, ys)
             implot.end_plot()
-        names = [n for n in host.sim.scene.plots if len(stats.series("plot:" + n)) == len(t)]
+        names = [n[5:] for n in probe.names() if n.startswith("plot:")]
         if not names:
             return
-        for name in names:                 # the values now, labelled
-            imgui.text(f"{name} = {stats.series('plot:' + name)[-1]:.4g}")
+        series = {name: probe["plot:" + name] for name in names}
+        for name, ys in series.items():      # the values now, labelled
+            imgui.text(f"{name} = {ys[-1]:.4g}")
         # One plot for all of them: a quantity approaching its limit shows against it.
         if implot.begin_plot("##quantities", imgui.ImVec2(-1, 140)):
-            implot.setup_axes("t [s]", "", flags, flags)
+            _setup_axes("t [s]", "", t, series.values())
             implot.setup_legend(implot.Location_.south_east)
-            for name in names:
-                implot.plot_line(name, t, stats.series("plot:" + name))
+            for name, ys in series.items():
+                implot.plot_line(name, t, ys)
             implot.end_plot()
 
     def _help(self, host) -> None:
@@ -212,3 +214,31 @@ class Panel:
         imgui.end()
         if still_open is False:
             host.act("help")
+
+
+#: Fraction of the data's range left empty above and below it in a plot.
+PLOT_MARGIN = 0.08
+
+
+def plot_limits(values) -> tuple[float, float]:
+    """The y range of a plot of ``values`` (arrays): their range plus a margin on each side, so
+    a line at the data's edge (a constant reference such as a terminal velocity) stays inside
+    the frame instead of on its border; a flat series gets a band around it."""
+    finite = [np.asarray(v, np.float64) for v in values]
+    finite = [v[np.isfinite(v)] for v in finite]
+    finite = [v for v in finite if v.size]
+    if not finite:
+        return -1.0, 1.0
+    low = min(float(v.min()) for v in finite)
+    high = max(float(v.max()) for v in finite)
+    span = high - low
+    pad = PLOT_MARGIN * span if span > 1e-12 * max(1.0, abs(high)) else \
+        max(0.5, 0.1 * abs(high))
+    return low - pad, high + pad
+
+
+def _setup_axes(x_label: str, y_label: str, t, values) -> None:
+    implot.setup_axes(x_label, y_label)
+    implot.setup_axis_limits(implot.ImAxis_.x1, float(t[0]), float(t[-1]), imgui.Cond_.always)
+    low, high = plot_limits(values)
+    implot.setup_axis_limits(implot.ImAxis_.y1, low, high, imgui.Cond_.always)

@@ -1,14 +1,11 @@
-"""Frame statistics for the panel: frames/s, real-time factor, physics ms per step, and the
-history the live plot draws. Smoothed over about half a second, so the numbers are readable."""
+"""Frame statistics for the panel: frames/s, real-time factor, physics ms per step. Smoothed
+over about a second, so the numbers are readable. (The live plots read a Probe, not this.)"""
 
 from __future__ import annotations
 
 from collections import deque
 
 import numpy as np
-
-#: Samples the live plot keeps (one per drawn frame).
-HISTORY = 600
 
 
 class FrameStats:
@@ -25,7 +22,6 @@ class FrameStats:
         self.frame_ms = 0.0                 # whole frame (update + draw) [ms]
         self.gui_ms = 0.0                   # the panel: new_frame to the end of its draw [ms]
         self.physics_share = 0.0            # fraction of the frame spent stepping
-        self.history: dict[str, deque] = {}
         self._frames: deque = deque(maxlen=window)
 
     def frame(self, real_dt: float, sim_dt: float, steps: int, physics_s: float) -> None:
@@ -41,17 +37,6 @@ class FrameStats:
         self.physics_share = min(1.0, physics / real)
         if n:
             self.step_ms = 1e3 * physics / n
-
-    def sample(self, values: dict[str, float]) -> None:
-        """Append one value per named series (time is the series "t")."""
-        for name, value in values.items():
-            self.history.setdefault(name, deque(maxlen=HISTORY)).append(float(value))
-
-    def series(self, name: str) -> np.ndarray:
-        return np.array(self.history.get(name, ()), dtype=np.float64)
-
-    def clear_history(self) -> None:
-        self.history.clear()
 
 
 def particle_count(scene) -> str:

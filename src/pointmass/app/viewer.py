@@ -1,8 +1,10 @@
 """The viewer's state and per-frame work, without pyglet: time stepping, drawing the scene into
 the renderer's framebuffer, the panel, keys and captures. ``window.py`` feeds it events.
 
-One frame is ``update(real_dt)`` (physics: as many fixed steps as the clock allows) and then
-``draw(screen)`` (scene into the offscreen FBO, blitted to ``screen``, panel on top).
+One frame is ``update(real_dt)`` (the playback clock turns real time into simulated seconds and
+``Simulation.advance`` into fixed steps) and then ``draw(screen)`` (scene into the offscreen
+FBO, blitted to ``screen``, panel on top). Drawing never steps physics. The live plots read a
+``Probe`` the viewer adds to the Simulation: the same object a notebook would plot.
 """
 
 from __future__ import annotations
@@ -14,10 +16,11 @@ from pathlib import Path
 import numpy as np
 from imgui_bundle import imgui, implot
 
+from ..probes import Probe
 from ..render import OrbitCamera, Renderer
 from .blit import Blitter
 from .capture import ViewRecorder, save_png, timestamped
-from .clock import FixedStepClock
+from .clock import PlaybackClock
 from .imgui_renderer import ImguiRenderer
 from .keymap import KeyMap
 from .mouse import MouseControls
@@ -26,6 +29,8 @@ from .stats import FrameStats
 
 #: The window's colour where the panel stands (RGBA in [0, 1]).
 _BEHIND_PANEL = (0.09, 0.10, 0.12, 1.0)
+#: Simulated seconds the live plots show.
+PLOT_SECONDS = 10.0
 
 
 class Viewer:
@@ -33,7 +38,7 @@ class Viewer:
 
     Args:
         ctx: The moderngl context to draw with (the window's).
-        sim: A ``Simulation`` (or ``SceneSimulation``).
+        sim: A ``pointmass.Simulation``.
         size: Framebuffer size (width, height) [px].
         paused: Start paused.
         output_dir: Where screenshots and videos go.
@@ -43,13 +48,14 @@ class Viewer:
     def __init__(self, ctx, sim, size: tuple[int, int], *, paused: bool = False,
                  output_dir: Path | str = ".", stem: str = "pointmass") -> None:
         self.ctx, self.sim = ctx, sim
-        self.clock = FixedStepClock(sim.scene.dt, paused=paused)
+        self.clock = PlaybackClock(paused=paused)
         self.camera = OrbitCamera.from_hint(sim.scene.camera)
         self.show_panel, self.show_help, self.show_contacts = True, False, False
         #: The window's framebuffer size [px] and its pixels per window point.
         self.window_size, self.pixel_ratio = tuple(size), 1.0
         self.renderer = Renderer(ctx, self._view_size())
-        self.mouse = MouseControls(self.camera, sim, lambda: self.renderer.size)
+        self.mouse = MouseControls(self.camera, sim, lambda: self.renderer.size,
+                                   say=self._say)
         demo = getattr(sim, "demo", None)
         self.keymap = KeyMap(demo.keys if demo is not None else {})
         self.stats = FrameStats()
@@ -58,10 +64,12 @@ class Viewer:
         self.recorder: ViewRecorder | None = None
         self.messages: list[str] = []        # what happened (screenshot paths...), newest last
         self.closed = False
+        #: Seconds of physics one frame may spend before it drops the steps it still owes.
         self.physics_budget = 0.05
         #: World settings changed in the panel, re-applied after every reset or rebuild.
         self.world_overrides: dict = {}
-        """Seconds of physics one frame may spend before it drops the steps it still owes."""
+        self.probe: Probe | None = None
+        self._watch()
         # ImGui contexts are global: one per viewer, destroyed in close() so tests do not leak.
         self.imgui_ctx = imgui.create_context()
         self.implot_ctx = implot.create_context()
@@ -94,37 +102,41 @@ class Viewer:
     # -- time -----------------------------------------------------------------------------------
     def update(self, real_dt: float) -> int:
         """Run the physics steps this frame owes; returns how many ran."""
-        steps = self.clock.advance(real_dt)
+        clock, sim = self.clock, self.sim
         t0 = time.perf_counter()
-        for done in range(1, steps + 1):
-            self.sim.step(self.clock.dt)
-            if done < steps and time.perf_counter() - t0 > self.physics_budget:
-                # A second cap, on time: big scenes stay interactive (slow motion instead).
-                self.clock.dropped += (steps - done) * self.clock.dt
-                steps = done
-                break
+        if clock.paused:
+            steps = clock.take_single_steps()
+            for _ in range(steps):
+                sim.step()
+        else:
+            # Capped in steps and in time: big scenes stay interactive (slow motion instead).
+            steps = sim.advance(clock.seconds(real_dt), max_steps=clock.max_steps,
+                                max_wall_seconds=self.physics_budget)
         physics = time.perf_counter() - t0
-        if steps:
-            scene = self.sim.scene
-            scene.record_trails()
-            world = scene.world
-            ke, pe = world.kinetic_energy(), world.potential_energy()
-            values = {"t": scene.time, "kinetic": ke, "potential": pe, "total": ke + pe}
-            for name, fn in scene.plots.items():
-                values["plot:" + name] = fn(scene)
-            self.stats.sample(values)
-        self.stats.frame(real_dt, steps * self.clock.dt, steps, physics)
+        self.stats.frame(real_dt, steps * sim.dt, steps, physics)
         return steps
+
+    def _watch(self) -> None:
+        """(Re)attach the live plots' probe: energies and the scene's own plot quantities."""
+        sim = self.sim
+        if self.probe is not None and self.probe in sim.probes:
+            sim.remove_probe(self.probe)
+        quantities = {"kinetic": lambda w: w.kinetic_energy(),
+                      "potential": lambda w: w.potential_energy()}
+        for name, fn in sim.scene.plots.items():
+            quantities["plot:" + name] = lambda w, fn=fn: fn(sim.scene)
+        samples = max(2, round(PLOT_SECONDS / sim.dt))
+        self.probe = sim.add_probe(Probe(max_samples=samples, **quantities))
 
     # -- drawing --------------------------------------------------------------------------------
     def draw(self, screen) -> None:
         """Scene into the FBO, copied to ``screen``, the panel over it."""
         r = self.renderer
         self.camera.track(self.sim.scene)
-        r.render(self.sim.scene, self.camera, show_contacts=self.show_contacts,
-                 extra_lines=self.mouse.extra_lines())
+        r.render(self.sim.scene, self.camera, trails=self.sim.trails,
+                 show_contacts=self.show_contacts, extra_lines=self.mouse.extra_lines())
         if self.recorder is not None:
-            self.recorder.offer(r.read_rgb, self.sim.scene.time)
+            self.recorder.offer(r.read_rgb, self.sim.time)
             if self.recorder.error is not None:
                 self.stop_recording()
         screen.use()
@@ -227,7 +239,7 @@ class Viewer:
         for name, value in self.world_overrides.items():
             self._apply_world(name, value)
         self.clock.reset()
-        self.stats.clear_history()
+        self._watch()
 
     # -- captures -------------------------------------------------------------------------------
     def screenshot(self, path: Path | None = None) -> Path:

@@ -151,7 +151,7 @@ class ViewerWindow(pyglet.window.Window):
         if imgui.get_io().want_capture_keyboard and symbol != key.ESCAPE:
             return pyglet.event.EVENT_HANDLED
         name = key_name(key.symbol_string(symbol))
-        self.viewer.sim.scene.keys_down.add(name)     # demos poll held keys (a WASD load)
+        self.viewer.sim.keys_down.add(name)     # demos poll held keys (a WASD load)
         self.viewer.key(name, ctrl=bool(modifiers & key.MOD_CTRL))
         if self.viewer.closed:
             self.close()
@@ -161,11 +161,11 @@ class ViewerWindow(pyglet.window.Window):
         if self.viewer is None:       # closed
             return
         self.imgui_input.key_event(symbol, False)
-        self.viewer.sim.scene.keys_down.discard(key_name(key.symbol_string(symbol)))
+        self.viewer.sim.keys_down.discard(key_name(key.symbol_string(symbol)))
 
     def on_deactivate(self) -> None:
         if self.viewer is not None:           # releases happen elsewhere: forget held keys
-            self.viewer.sim.scene.keys_down.clear()
+            self.viewer.sim.keys_down.clear()
 
     def on_text(self, text) -> None:
         if self.viewer is None:       # closed

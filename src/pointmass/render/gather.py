@@ -105,9 +105,10 @@ def link_lines(scene: Scene, width_scale: float) -> list[np.ndarray]:
     return out
 
 
-def trail_lines(scene: Scene, colors: np.ndarray, width_scale: float, *,
+def trail_lines(scene: Scene, trails, colors: np.ndarray, width_scale: float, *,
                 glowing: bool = False) -> list[np.ndarray]:
-    """Line rows for each trailed particle's recent path, fading toward its oldest point.
+    """Line rows for each recorded path (``pointmass.trails.Trails``), from the trail's oldest
+    point, nearly transparent, to the particle's current position.
 
     With ``glowing`` only the trails of glowing particles (``scene.glow``), drawn as light
     streaks for additive blending: brightest and widest at the head, fading faster and
@@ -116,13 +117,14 @@ def trail_lines(scene: Scene, colors: np.ndarray, width_scale: float, *,
     """
     out = []
     hidden = scene.hidden
+    pos = scene.world.particles.position
     glow = glow_mask(scene)
-    for i in scene.trails:
-        if hidden is not None and i < len(hidden) and hidden[i]:
+    for i in trails:
+        if i >= len(pos) or (hidden is not None and i < len(hidden) and hidden[i]):
             continue  # a dead round or spark: its old path is not its own any more
-        if (i < len(glow) and glow[i]) != glowing:
+        if bool(glow[i]) != glowing:
             continue
-        pts = scene.trail_points(i)
+        pts = np.vstack([trails.points(i), pos[i]])
         if len(pts) < 2:
             continue
         rgb = colors[i] if i < len(colors) else (1.0, 1.0, 1.0)

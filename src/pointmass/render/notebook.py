@@ -1,9 +1,8 @@
 """Clips for notebooks: record offscreen, embed as an H.264 ``<video>`` (as MuJoCo's tutorial
 does with mediapy), or save.
 
-    >>> from pointmass.demo import Simulation, load_demo
     >>> from pointmass.render.notebook import video
-    >>> video(Simulation(load_demo("side_library")), seconds=3)   # doctest: +SKIP
+    >>> video("side_library", seconds=3)   # doctest: +SKIP
 """
 
 from __future__ import annotations
@@ -62,12 +61,17 @@ class Clip:
         return path
 
 
-def video(simulation, seconds: float = 5.0, *, fps: int = 30, size: tuple[int, int] = (640, 360),
+def video(source, seconds: float = 5.0, *, fps: int = 30, size: tuple[int, int] = (640, 360),
           crf: int = 28) -> Clip:
-    """Record ``seconds`` of a demo ``Simulation`` offscreen into an in-memory mp4 clip.
+    """Record ``seconds`` of ``source`` offscreen into an in-memory mp4 clip.
 
-    Defaults keep notebooks small (640x360, crf 28: about 330 kB for 5 s).
+    ``source`` is a ``Simulation`` (it goes on from where it is, and is left ``seconds``
+    later), a ``Scene`` built in a script, or a demo name. Defaults keep notebooks small
+    (640x360, crf 28: about 330 kB for 5 s).
     """
+    from ..simulation import Simulation
+
+    simulation = source if isinstance(source, Simulation) else Simulation(source)
     with tempfile.TemporaryDirectory() as tmp:
         writer = VideoWriter(Path(tmp) / "clip.mp4", size, fps, crf=crf)
         result = record(simulation, writer, seconds=seconds, fps=fps, size=writer.size,

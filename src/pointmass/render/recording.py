@@ -1,7 +1,8 @@
 """Recording a demo offscreen: render, read back, encode in a background thread.
 
-Simulated time advances by exactly 1/fps per frame (``Simulation.advance``), whatever the
-machine's speed, so videos play at true speed. Frames go to the encoder through a bounded queue
+The Simulation advances 1/fps simulated seconds per frame (its fixed steps, with the remainder
+carried over, so the trajectory is the window's and a probe run's), whatever the machine's
+speed, so videos play at true speed. Frames go to the encoder through a bounded queue
 (rendering and encoding overlap; memory stays bounded). Ctrl-C or an error mid-recording still
 closes the file, so it plays with the frames so far; a bad output path fails before any
 simulation runs.
@@ -136,7 +137,8 @@ def record(simulation, path: str | Path | VideoWriter, *, seconds: float, fps: i
         encoder.start()
         for index in range(total):
             camera.track(simulation.scene)
-            renderer.render(simulation.scene, camera, show_contacts=show_contacts)
+            renderer.render(simulation.scene, camera, trails=simulation.trails,
+                            show_contacts=show_contacts)
             encoder.put(renderer.read_rgb())
             done = index + 1
             if on_frame is not None:

@@ -141,11 +141,13 @@ class Renderer:
                 obj.release()
 
     # -- drawing -------------------------------------------------------------------------------
-    def render(self, scene: Scene, camera: OrbitCamera, *, show_contacts: bool = False,
-               extra_lines=None) -> None:
+    def render(self, scene: Scene, camera: OrbitCamera, *, trails=None,
+               show_contacts: bool = False, extra_lines=None) -> None:
         """Draw ``scene`` as seen by ``camera`` into ``fbo``.
 
         Args:
+            trails: The running Simulation's ``Trails`` (recorded paths of ``scene.trails``), or
+                None to draw none.
             show_contacts: Also draw the world's current contacts (a short line along each
                 normal).
             extra_lines: Optional list of (start (3,), end (3,), rgb) [m], e.g. a mouse spring.
@@ -161,9 +163,10 @@ class Renderer:
         width_scale = max(1.0, h / 720.0)
 
         n_spheres = self._upload_spheres(scene)
-        n_lines = self._upload_lines(scene, width_scale)
-        glow_trails = gather.trail_lines(scene, scene.particle_colors(), width_scale,
-                                         glowing=True) if scene.trails else []
+        n_lines = self._upload_lines(scene, width_scale, trails)
+        glow_trails = gather.trail_lines(scene, trails, scene.particle_colors(), width_scale,
+                                         glowing=True) if trails is not None and len(trails) \
+            else []
         n_glow_trails = self._glow_trails.put(np.concatenate(glow_trails)) if glow_trails else 0
         n_glow = int(self._spheres.host[:n_spheres, 7].sum()) if n_spheres else 0
         overlay = []
@@ -294,12 +297,12 @@ class Renderer:
         self._spheres.upload(rows)
         return rows
 
-    def _upload_lines(self, scene: Scene, width_scale: float) -> int:
+    def _upload_lines(self, scene: Scene, width_scale: float, trails) -> int:
         parts: list[np.ndarray] = []
         if scene.show_links:
             parts += gather.link_lines(scene, width_scale)
-        if scene.trails:
-            parts += gather.trail_lines(scene, scene.particle_colors(), width_scale)
+        if trails is not None and len(trails):
+            parts += gather.trail_lines(scene, trails, scene.particle_colors(), width_scale)
         for box in scene.boxes:
             start, end = geometry.box_edges(box.center, box.half_size, box.rotation)
             rgb = np.asarray(box.color) * (1.0 if box.wireframe else 0.45)

@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-import math
 import os
 from pathlib import Path
 
@@ -36,10 +35,6 @@ def check_writable(path: str | Path) -> Path:
     return path
 
 
-#: Frames per second of the time advanced before a snapshot (trails record once per frame).
-SNAPSHOT_FPS = 30
-
-
 def save_image(rgb: np.ndarray, path: str | Path) -> None:
     """Write an (H, W, 3) uint8 image; the format follows the suffix (.png, .jpg, ...)."""
     from PIL import Image
@@ -49,22 +44,17 @@ def save_image(rgb: np.ndarray, path: str | Path) -> None:
 
 def render_frame(simulation, size: tuple[int, int] = (1280, 720), *, time: float = 0.0,
                  show_contacts: bool = False) -> np.ndarray:
-    """Advance ``simulation`` (a demo Simulation) by ``time`` seconds and render it offscreen
-    from its camera hint; returns (H, W, 3) uint8, top row first.
-
-    Time advances in frames of at most 1/30 s, as a recording would, so trails have their points.
-    """
+    """Advance ``simulation`` (a ``Simulation``) by ``time`` seconds and render it offscreen
+    from its camera hint; returns (H, W, 3) uint8, top row first."""
     if time > 0:
-        frames = math.ceil(time * SNAPSHOT_FPS - 1e-9)
-        for _ in range(frames):
-            simulation.advance(time / frames)
+        simulation.advance(time)
     ctx = create_headless_context()
     try:
         renderer = Renderer(ctx, size)
         scene = simulation.scene
         camera = OrbitCamera.from_hint(scene.camera)
         camera.track(scene)
-        renderer.render(scene, camera, show_contacts=show_contacts)
+        renderer.render(scene, camera, trails=simulation.trails, show_contacts=show_contacts)
         rgb = renderer.read_rgb()
         renderer.release()
         return rgb
