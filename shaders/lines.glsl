@@ -12,6 +12,8 @@ in vec2 in_style;         // x: width [px], y: dash period [m] (0 = solid)
 
 uniform mat4 u_view_proj;
 uniform vec2 u_viewport;  // framebuffer size [px]
+uniform float u_caps;     // 1: extend past each end by half a width (joints without gaps);
+                          // 0: not (additive trails, where overlaps would double the light)
 
 out vec4 v_color;
 out float v_along;        // distance from the start [m]
@@ -48,7 +50,8 @@ void main() {
     float half_w = 0.5 * in_style.x + 0.5;         // half a pixel more for the soft edge
     vec4 p = in_corner.x < 0.5 ? ca : cb;
     // Extend by half a width past each end so joints between segments have no gaps.
-    vec2 offset = normal * in_corner.y * half_w + dir * (in_corner.x < 0.5 ? -half_w : half_w);
+    float cap = u_caps * half_w;
+    vec2 offset = normal * in_corner.y * half_w + dir * (in_corner.x < 0.5 ? -cap : cap);
     p.xy += offset / (u_viewport * 0.5) * p.w;
     gl_Position = p;
     v_along = mix(t0, t1, in_corner.x) * len;

@@ -8,6 +8,7 @@
 #if defined VERTEX_SHADER
 
 in vec4 in_sphere;        // xyz centre [m], w radius [m]
+in float in_glow;         // 1: a glowing particle, which is a light and casts no shadow
 
 uniform vec3 u_region;    // x0, z0 [m] of the texture's corner, and its side [m]
 uniform float u_texels;   // texture side [texels]
@@ -22,7 +23,7 @@ void main() {
     float fade = clamp(1.0 - h / (5.0 * r + 1.5), 0.0, 1.0);
     float s = r * (1.3 + 0.7 * (1.0 - fade));      // higher: wider and fainter
     v_alpha = u_strength * fade;
-    if (r <= 0.0 || in_sphere.y < u_ground || fade <= 0.0) {
+    if (r <= 0.0 || in_glow >= 0.5 || in_sphere.y < u_ground || fade <= 0.0) {
         gl_Position = vec4(2.0, 2.0, 2.0, 1.0);
         gl_PointSize = 1.0;
         return;

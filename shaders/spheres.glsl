@@ -6,7 +6,7 @@
 
 in vec2 in_corner;        // quad corner in [-1, 1]^2
 in vec4 in_sphere;        // xyz centre [m], w radius [m] (0 hides it)
-in vec4 in_color;         // rgb in [0, 1], a unused
+in vec4 in_color;         // rgb in [0, 1], a: 1 glows (glow.glsl draws it instead)
 
 uniform mat4 u_view;
 uniform mat4 u_proj;
@@ -23,7 +23,7 @@ void main() {
     v_center = c;
     v_radius = r;
     v_color = in_color.rgb;
-    if (r <= 0.0 || d <= r * 1.001) {          // hidden, or the eye is inside it
+    if (r <= 0.0 || d <= r * 1.001 || in_color.a >= 0.5) {   // hidden, eye inside, or glows
         gl_Position = vec4(2.0, 2.0, 2.0, 1.0);
         v_point = c;
         return;

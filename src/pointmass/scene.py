@@ -118,6 +118,12 @@ class Scene:
     plots: dict[str, Callable[[Scene], float]] = field(default_factory=dict)
     handles: dict[str, Any] = field(default_factory=dict)
     dt: float = 1.0 / 120.0
+    sky: str = "day"
+    """The backdrop: "day" (grey sky, light ground grid) or "night" (a dark gradient and a
+    dimmed grid, so glowing particles read)."""
+    glow: bool | np.ndarray = False
+    """Draw particles as unlit glowing sprites (a bright core and a soft halo, added to what is
+    behind them, with additive tapering trails): True for all, or a boolean mask (N,)."""
 
     def __post_init__(self) -> None:
         if self.camera is None:

@@ -55,3 +55,30 @@ def cube_scene() -> pm.Scene:
     scene.planes.append(pm.PlaneVisual(center=(0.0, 0.3, 1.8), half_size=(1.5, 0.6),
                                        color=(0.2, 0.45, 0.9, 0.5)))
     return scene
+
+
+def night_scene() -> pm.Scene:
+    """A frozen firework burst at night: twelve glowing sparks flying out of a centre, each with
+    a short trail (recorded in ``handles["trails"]``), and a rising rocket; two colors overlap
+    where the sparks cross."""
+    from pointmass.trails import Trails
+
+    world = pm.World(gravity=(0.0, 0.0, 0.0))
+    angles = np.linspace(0.0, 2.0 * np.pi, 12, endpoint=False)
+    out = np.c_[np.cos(angles), np.sin(angles), 0.3 * np.sin(3 * angles)]
+    centre = np.array([0.0, 2.5, 0.0])
+    world.add_particles(np.r_[centre + 1.4 * out, [(1.5, 0.8, 0.5)]])
+    colors = np.r_[np.tile([(1.0, 0.35, 0.2), (0.3, 0.6, 1.0)], (6, 1)), [(1.0, 0.85, 0.4)]]
+    scene = pm.Scene(world, colors=colors, point_radius=0.05, sky="night", glow=True,
+                     trails=list(range(13)), trail_length=6,
+                     camera=pm.CameraHint(target=(0, 1.8, 0), distance=6, yaw=20, pitch=5))
+    pos = world.particles.position
+    end = pos.copy()
+    trails = scene.handles["trails"] = Trails()
+    for k in range(5):                       # the paths that led here, oldest first
+        t = (k + 1) / 6
+        pos[:12] = centre + 1.4 * t * out
+        pos[12] = end[12] - (1 - t) * np.array([0.0, 0.8, 0.0])
+        trails.record(scene)
+    pos[:] = end                             # now: the trails end at the particles
+    return scene

@@ -27,11 +27,11 @@ def _shot(renderer, scene, **options):
     return renderer.read_rgb()
 
 
-@pytest.mark.parametrize("name", ["spheres", "lines", "grid", "cube"])
+@pytest.mark.parametrize("name", ["spheres", "lines", "grid", "cube", "night"])
 def test_golden_scene(renderer, golden, name):
     """Render each reference scene and compare it with its golden PNG."""
     scene = getattr(scenes, f"{name}_scene")()
-    golden(name, _shot(renderer, scene))
+    golden(name, _shot(renderer, scene, trails=scene.handles.get("trails")))
 
 
 def test_golden_side_library_demo(renderer, golden):

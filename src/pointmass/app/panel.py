@@ -14,6 +14,7 @@ from imgui_bundle import imgui, implot
 
 from ..params import param_specs
 from .keymap import MOUSE_HELP
+from .stats import particle_count
 
 PANEL_WIDTH = 360
 #: Window points the panel takes from the left edge (its width and margins): the 3D view is
@@ -166,7 +167,7 @@ class Panel:
             ("frames/s", f"{s.fps:.1f}"),
             ("physics per step", f"{s.step_ms:.2f} ms  (dt {1e3 * host.sim.dt:.2f} ms)"),
             ("panel per frame", f"{s.gui_ms:.2f} ms"),
-            ("particles", f"{world.particles.count}"),
+            ("particles", particle_count(scene)),
             ("contacts", f"{contacts}" + (f"  ({last.mode})" if last is not None else "")),
             ("kinetic energy", f"{world.kinetic_energy():.4g} J"),
             ("potential energy", f"{world.potential_energy():.4g} J"),

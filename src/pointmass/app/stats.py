@@ -5,6 +5,8 @@ from __future__ import annotations
 
 from collections import deque
 
+import numpy as np
+
 
 class FrameStats:
     """Running figures about the viewer; ``frame`` once per drawn frame.
@@ -35,3 +37,14 @@ class FrameStats:
         self.physics_share = min(1.0, physics / real)
         if n:
             self.step_ms = 1e3 * physics / n
+
+
+def particle_count(scene) -> str:
+    """The panel's particle count: the particles drawn, and the pool they come from when the
+    scene hides some (dead fireworks, spent rounds), e.g. "137 live / 1024"; a pool size alone
+    would read the same whatever is alive."""
+    n = scene.world.particles.count
+    if scene.hidden is None:
+        return f"{n}"
+    hidden = np.asarray(scene.hidden, bool).reshape(-1)[:n]
+    return f"{n - int(hidden.sum())} live / {n}"

@@ -10,7 +10,7 @@ from . import style
 
 #: Floats per line instance: start (3), end (3), rgba (4), width [px], dash period [m].
 LINE_FLOATS = 12
-#: Floats per sphere instance: centre (3), radius, rgb, spare.
+#: Floats per sphere instance: centre (3), radius, rgb, glow (1: an unlit glowing sprite).
 SPHERE_FLOATS = 8
 
 LINK_KINDS = ("spring", "bungee", "cable", "rod")
@@ -33,6 +33,19 @@ def anchor_points(scene: Scene) -> np.ndarray:
     return np.unique(np.concatenate(found), axis=0)
 
 
+def glow_mask(scene: Scene) -> np.ndarray:
+    """Which particles glow, shape (N,) bool: ``scene.glow`` as a flag for all or a mask (a
+    short mask leaves the rest unlit, so a demo may grow its world without growing it)."""
+    n = scene.world.particles.count
+    glow = scene.glow
+    if glow is None or np.ndim(glow) == 0:
+        return np.full(n, bool(glow))
+    mask = np.zeros(n, bool)
+    g = np.asarray(glow, bool).reshape(-1)[:n]
+    mask[: len(g)] = g
+    return mask
+
+
 def fill_spheres(scene: Scene, out: np.ndarray, anchors: np.ndarray) -> int:
     """Write particles then anchor markers into ``out`` (rows of SPHERE_FLOATS); returns the
     row count. ``out`` must have room for N + A rows."""
@@ -45,11 +58,13 @@ def fill_spheres(scene: Scene, out: np.ndarray, anchors: np.ndarray) -> int:
         hidden = np.asarray(scene.hidden, bool)[:n]
         out[: len(hidden), 3][hidden] = 0.0   # radius 0: the vertex shader drops the quad
     out[:n, 4:7] = scene.particle_colors()
+    out[:n, 7] = glow_mask(scene)
     a = len(anchors)
     if a:
         out[n:n + a, 0:3] = anchors
         out[n:n + a, 3] = scene.point_radius * style.ANCHOR_SCALE
         out[n:n + a, 4:7] = style.ANCHOR_COLOR
+        out[n:n + a, 7] = 0.0
     return n + a
 
 
@@ -90,22 +105,38 @@ def link_lines(scene: Scene, width_scale: float) -> list[np.ndarray]:
     return out
 
 
-def trail_lines(scene: Scene, trails, colors: np.ndarray, width_scale: float
-                ) -> list[np.ndarray]:
+def trail_lines(scene: Scene, trails, colors: np.ndarray, width_scale: float, *,
+                glowing: bool = False) -> list[np.ndarray]:
     """Line rows for each recorded path (``pointmass.trails.Trails``), from the trail's oldest
-    point, nearly transparent, to the particle's current position."""
+    point, nearly transparent, to the particle's current position.
+
+    With ``glowing`` only the trails of glowing particles (``scene.glow``), drawn as light
+    streaks for additive blending: brightest and widest at the head, fading faster and
+    tapering toward the tail, so a short trail reads as motion rather than as a line. Without
+    it, only the others, with the plain fade.
+    """
     out = []
     hidden = scene.hidden
     pos = scene.world.particles.position
+    glow = glow_mask(scene)
     for i in trails:
         if i >= len(pos) or (hidden is not None and i < len(hidden) and hidden[i]):
             continue  # a dead round or spark: its old path is not its own any more
+        if bool(glow[i]) != glowing:
+            continue
         pts = np.vstack([trails.points(i), pos[i]])
         if len(pts) < 2:
             continue
-        alpha = np.linspace(0.05, 0.9, len(pts) - 1)
         rgb = colors[i] if i < len(colors) else (1.0, 1.0, 1.0)
-        out.append(_rows(pts[:-1], pts[1:], rgb, alpha, style.TRAIL_WIDTH * width_scale, 0.0))
+        if glowing:
+            t = np.linspace(0.0, 1.0, len(pts))[1:]
+            width = style.GLOW_TRAIL_WIDTH * width_scale * (
+                style.GLOW_TRAIL_TAIL + (1.0 - style.GLOW_TRAIL_TAIL) * t)
+            out.append(_rows(pts[:-1], pts[1:], rgb, t * t, width, 0.0))
+        else:
+            alpha = np.linspace(0.05, 0.9, len(pts) - 1)
+            out.append(_rows(pts[:-1], pts[1:], rgb, alpha, style.TRAIL_WIDTH * width_scale,
+                             0.0))
     return out
 
 

@@ -5,7 +5,8 @@ A window blits ``renderer.fbo`` to its screen; screenshots, videos and notebook 
 
 Per frame: one upload of every sphere (centre, radius, color) into one float32 buffer, one of
 every line; then background, ground grid, boxes and opaque planes, blob shadows (the sphere
-buffer again, as flat discs), sphere impostors, lines, and translucent planes last.
+buffer again, as flat discs), sphere impostors, lines, translucent planes, and last the glowing
+particles and their trails, added onto the image (order-free, so never sorted).
 """
 
 from __future__ import annotations
@@ -26,7 +27,7 @@ from .shadows import ShadowMap
 
 _QUAD = np.array([-1, -1, 1, -1, -1, 1, 1, 1], np.float32)       # triangle strip, [-1, 1]^2
 _PROGRAMS = ("background", "ground", "spheres", "shadow_map", "shadow_overlay", "lines",
-             "mesh")
+             "mesh", "glow")
 _LINE_QUAD = np.array([0, -1, 1, -1, 0, 1, 1, 1], np.float32)    # along x, across y
 
 
@@ -65,7 +66,11 @@ class Renderer:
             "spheres": ctx.vertex_array(prog["spheres"], [
                 (self._quad, "2f", "in_corner"),
                 (buf, "4f 4f/i", "in_sphere", "in_color")]),
-            "shadow_map": ctx.vertex_array(prog["shadow_map"], [(buf, "4f 16x", "in_sphere")]),
+            "shadow_map": ctx.vertex_array(prog["shadow_map"], [(buf, "4f 12x 1f", "in_sphere",
+                                                                 "in_glow")]),
+            "glow": ctx.vertex_array(prog["glow"], [
+                (self._quad, "2f", "in_corner"),
+                (buf, "4f 4f/i", "in_sphere", "in_color")]),
         })
         self._shadows = ShadowMap(ctx, prog["shadow_map"])
         def line_vaos(buf):
@@ -77,6 +82,8 @@ class Renderer:
         # Contacts and caller lines (a mouse spring) are drawn on top of everything: they
         # start inside the spheres they belong to.
         self._overlay = Instances(ctx, gather.LINE_FLOATS, line_vaos, capacity=64)
+        # Trails of glowing particles: light streaks, blended additively with the sprites.
+        self._glow_trails = Instances(ctx, gather.LINE_FLOATS, line_vaos, capacity=256)
         self.fbo: moderngl.Framebuffer | None = None
         self.color_texture: moderngl.Texture | None = None
         self._depth = None
@@ -157,6 +164,11 @@ class Renderer:
 
         n_spheres = self._upload_spheres(scene)
         n_lines = self._upload_lines(scene, width_scale, trails)
+        glow_trails = gather.trail_lines(scene, trails, scene.particle_colors(), width_scale,
+                                         glowing=True) if trails is not None and len(trails) \
+            else []
+        n_glow_trails = self._glow_trails.put(np.concatenate(glow_trails)) if glow_trails else 0
+        n_glow = int(self._spheres.host[:n_spheres, 7].sum()) if n_spheres else 0
         overlay = []
         if show_contacts:
             overlay += gather.contact_lines(scene, drawn_radii(scene), width_scale)
@@ -172,7 +184,7 @@ class Renderer:
         # recording or a still camera pays one copy per frame instead of two full-screen passes.
         target = self._msaa if self._msaa is not None else self.fbo
         key = (view.tobytes(), proj.tobytes(), bool(scene.show_ground),
-               float(scene.ground_height))
+               float(scene.ground_height), scene.sky)
         if self._msaa is None and self.cache_backdrop:
             if key != self._backdrop_key:
                 self._draw_backdrop(self._backdrop, scene, camera, vp)
@@ -212,11 +224,14 @@ class Renderer:
         ln = self.programs["lines"]
         ln["u_view_proj"].write(vp.tobytes())
         ln["u_viewport"].value = (float(w), float(h))
+        ln["u_caps"].value = 1.0
         if n_lines:
             self._lines.vaos["lines"].render(moderngl.TRIANGLE_STRIP, vertices=4,
                                              instances=n_lines)
         target.depth_mask = False
         self._draw_meshes(scene, vp, light_world, translucent=True)
+        if n_glow or n_glow_trails:
+            self._draw_glow(n_spheres if n_glow else 0, n_glow_trails, view, proj)
         if n_overlay:
             ctx.disable(moderngl.DEPTH_TEST)
             self._overlay.vaos["lines"].render(moderngl.TRIANGLE_STRIP, vertices=4,
@@ -227,23 +242,50 @@ class Renderer:
         if self._msaa is not None:
             ctx.copy_framebuffer(self.fbo, self._msaa)
 
+    def _draw_glow(self, n_spheres: int, n_trails: int, view: np.ndarray,
+                   proj: np.ndarray) -> None:
+        """Trails of glowing particles, then the particles (the sphere rows, of which glow.glsl
+        keeps the glowing ones), added onto the image: depth tested but not written, so the
+        ground and solid things still hide what is behind them."""
+        ctx = self.ctx
+        w, h = self.size
+        if n_trails:
+            ctx.blend_func = moderngl.SRC_ALPHA, moderngl.ONE
+            self.programs["lines"]["u_caps"].value = 0.0
+            self._glow_trails.vaos["lines"].render(moderngl.TRIANGLE_STRIP, vertices=4,
+                                                   instances=n_trails)
+            self.programs["lines"]["u_caps"].value = 1.0
+        if n_spheres:
+            ctx.blend_func = moderngl.ONE, moderngl.ONE
+            g = self.programs["glow"]
+            g["u_view"].write(view.tobytes())
+            g["u_proj"].write(proj.tobytes())
+            g["u_viewport"].value = (float(w), float(h))
+            g["u_min_core"].value = style.GLOW_MIN_CORE * max(0.5, h / 720.0)
+            g["u_halo"].value = style.GLOW_HALO
+            g["u_halo_gain"].value = style.GLOW_HALO_GAIN
+            self._spheres.vaos["glow"].render(moderngl.TRIANGLE_STRIP, vertices=4,
+                                              instances=n_spheres)
+        ctx.blend_func = moderngl.DEFAULT_BLENDING
+
     def _draw_backdrop(self, fbo: moderngl.Framebuffer, scene: Scene, camera: OrbitCamera,
                        vp: np.ndarray) -> None:
         """Clear ``fbo`` and draw the ground grid and the sky gradient into it."""
         ctx = self.ctx
+        sky = style.sky(scene.sky)
         fbo.use()
         ctx.viewport = (0, 0, *self.size)
         fbo.depth_mask = True
-        ctx.clear(*style.SKY_TOP, 1.0, depth=1.0)
+        ctx.clear(*sky.top, 1.0, depth=1.0)
         ctx.enable(moderngl.DEPTH_TEST)
         ctx.disable(moderngl.BLEND | moderngl.CULL_FACE)
         if scene.show_ground:
-            self._draw_ground(scene, camera, vp)
+            self._draw_ground(scene, camera, vp, sky)
         # The sky at the far plane: only pixels the ground left empty pass the depth test.
         ctx.depth_func = "<="
         bg = self.programs["background"]
-        bg["u_top"].value = style.SKY_TOP
-        bg["u_bottom"].value = style.SKY_HORIZON
+        bg["u_top"].value = sky.top
+        bg["u_bottom"].value = sky.horizon
         self._vaos["background"].render(moderngl.TRIANGLE_STRIP, vertices=3)
         ctx.depth_func = "<"
 
@@ -273,7 +315,8 @@ class Renderer:
             self._lines.upload(rows)
         return rows
 
-    def _draw_ground(self, scene: Scene, camera: OrbitCamera, vp: np.ndarray) -> None:
+    def _draw_ground(self, scene: Scene, camera: OrbitCamera, vp: np.ndarray,
+                     sky: style.Sky) -> None:
         g = self.programs["ground"]
         t = camera.target
         g["u_view_proj"].write(vp.tobytes())
@@ -282,9 +325,9 @@ class Renderer:
         # 1 m cells from 5 m to 50 m away, 10 cm closer, 10 m further.
         g["u_spacing"].value = float(10.0 ** math.floor(math.log10(max(camera.distance, 1e-3)
                                                                    / 5.0)))
-        g["u_base"].value = style.GROUND_BASE
-        g["u_line"].value = style.GROUND_LINE
-        g["u_fog"].value = style.SKY_HORIZON
+        g["u_base"].value = sky.ground_base
+        g["u_line"].value = sky.ground_line
+        g["u_fog"].value = sky.horizon
         self._vaos["ground"].render(moderngl.TRIANGLE_STRIP, vertices=4)
 
     def _draw_meshes(self, scene: Scene, vp: np.ndarray, light_world, translucent: bool) -> None:
@@ -320,6 +363,7 @@ class Renderer:
         self._shadows.release()
         self._lines.release()
         self._overlay.release()
+        self._glow_trails.release()
         for vao in self._vaos.values():
             vao.release()
         for buf in (self._quad, self._line_quad, self._cube, self._plane):

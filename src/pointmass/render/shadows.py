@@ -35,7 +35,8 @@ class ShadowMap:
         self.texture.repeat_x = self.texture.repeat_y = False
         self.fbo = ctx.framebuffer([self.texture])
         self.boxes = Instances(ctx, gather.SPHERE_FLOATS, lambda buf: {
-            "map": ctx.vertex_array(program, [(buf, "4f 16x", "in_sphere")])}, capacity=16)
+            "map": ctx.vertex_array(program, [(buf, "4f 12x 1f", "in_sphere", "in_glow")])},
+            capacity=16)
         self.region = (0.0, 0.0, 0.0)
         """x0, z0 of the covered square's corner and its side [m]; side 0: no shadows."""
         self.used = TEXELS
@@ -46,7 +47,8 @@ class ShadowMap:
         """Redraw the texture for this frame.
 
         Args:
-            rows: The particles' sphere rows (N, 8) as uploaded (centre, radius, ...).
+            rows: The particles' sphere rows (N, 8) as uploaded (centre, radius, ..., glow);
+                glowing ones are lights and cast no shadow.
             vao: Reads those rows with ``program`` (points).
             strength: Darkness of a resting sphere's shadow, in [0, 1].
         """
@@ -58,8 +60,8 @@ class ShadowMap:
             box_rows[:, 0:3] = [b.center for b in solid]
             box_rows[:, 3] = [0.75 * float(np.linalg.norm(b.half_size)) for b in solid]
         self.used = TEXELS if len(rows) <= CROWD else TEXELS // 2
-        self.region = _region(np.concatenate([rows[:, :4], box_rows[:, :4]]), ground,
-                              self.used)
+        casters = rows[rows[:, 7] < 0.5, :4]
+        self.region = _region(np.concatenate([casters, box_rows[:, :4]]), ground, self.used)
         if self.region[2] <= 0.0:
             return
         prev = self.ctx.fbo

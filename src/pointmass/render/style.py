@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+from dataclasses import dataclass
+
 import numpy as np
 
 #: Sky gradient, top and horizon (RGB in [0, 1]); the ground fades into the horizon color.
@@ -10,6 +12,36 @@ SKY_HORIZON = (0.40, 0.44, 0.50)
 #: Ground fill and grid lines.
 GROUND_BASE = (0.27, 0.29, 0.32)
 GROUND_LINE = (0.47, 0.50, 0.55)
+
+
+@dataclass(frozen=True)
+class Sky:
+    """A backdrop: the sky gradient (top, horizon) and the ground grid's fill and lines (RGB in
+    [0, 1]); the ground fades into the horizon color far away."""
+
+    top: tuple[float, float, float]
+    horizon: tuple[float, float, float]
+    ground_base: tuple[float, float, float]
+    ground_line: tuple[float, float, float]
+
+
+#: The backdrops a Scene's ``sky`` names. Night is dark enough that additive glow reads, and
+#: its grid is dimmed to a hint of the ground so it does not compete with the fireworks.
+SKIES = {
+    "day": Sky(SKY_TOP, SKY_HORIZON, GROUND_BASE, GROUND_LINE),
+    "night": Sky(top=(0.004, 0.006, 0.022), horizon=(0.035, 0.05, 0.11),
+                 ground_base=(0.018, 0.022, 0.035), ground_line=(0.06, 0.07, 0.10)),
+}
+
+
+def sky(name: str) -> Sky:
+    """The backdrop called ``name``; a clear error naming the choices otherwise."""
+    try:
+        return SKIES[name]
+    except (KeyError, TypeError):
+        raise ValueError(f"unknown sky {name!r}; choose one of {sorted(SKIES)}") from None
+
+
 #: Darkness of a blob shadow under a sphere resting on the ground, in [0, 1].
 SHADOW_STRENGTH = 0.75
 
@@ -35,6 +67,17 @@ STRAIN_FULL = 0.25
 
 CONTACT_COLOR = (1.0, 0.85, 0.10)
 TRAIL_WIDTH = 2.0
+#: Trails of glowing particles: additive light streaks, this wide at the head [px at 720 rows],
+#: tapering to GLOW_TRAIL_TAIL of that at the oldest point.
+GLOW_TRAIL_WIDTH = 2.5
+GLOW_TRAIL_TAIL = 0.3
+
+#: Glowing particles (glow.glsl): the bright core is the drawn radius but never under
+#: GLOW_MIN_CORE px (at 720 rows), and the halo reaches GLOW_HALO times the core's radius
+#: with GLOW_HALO_GAIN of the color at its centre.
+GLOW_MIN_CORE = 2.0
+GLOW_HALO = 5.0
+GLOW_HALO_GAIN = 1.0
 EXTRA_WIDTH = 2.5
 
 
