@@ -40,7 +40,7 @@ def _margin_value(value) -> float | None:
     return None if value is None else check.scalar(value, "margin", low=0.0)
 
 
-@njit(cache=True)
+@njit(cache=True, nogil=True)
 def _plane_contacts(pos, radius, inv_mass, idx, normal, offset, margin, margin_fraction,
                     restitution, key_base, out_a, out_b, out_n, out_pen, out_rest, out_key,
                     start):
@@ -213,7 +213,7 @@ def _swap_contacts(out_a, out_b, out_n, out_pen, out_rest, out_key, u, v):
     out_key[u], out_key[v] = out_key[v], out_key[u]
 
 
-@njit(cache=True)
+@njit(cache=True, nogil=True)
 def _sphere_pairs(pos, vel, radius, inv_mass, idx, cell_size, restitution, margin,
                   margin_fraction, sweep, dt, out_a, out_b, out_n, out_pen, out_rest, out_key,
                   start):
@@ -348,7 +348,7 @@ def _impact_direction(dx, dy, dz, vel, i, j, reach, dt):
     return dx + ux * t, dy + uy * t, dz + uz * t
 
 
-@njit(cache=True)
+@njit(cache=True, nogil=True)
 def _sweep_lengths(velocity, dt):
     """|v|·dt per particle [m]: how far each may travel in the coming step."""
     out = np.empty(velocity.shape[0])

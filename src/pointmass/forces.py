@@ -67,7 +67,7 @@ class _Selection:
         return self._checked
 
 
-@njit(cache=True)
+@njit(cache=True, nogil=True)
 def _gravity_kernel(force, inv_mass, idx, g):
     for k in range(idx.shape[0]):
         i = idx[k]
@@ -122,7 +122,7 @@ def _drag_particle(force, velocity, i, k1, k2):
         force[i, 2] -= c * vz
 
 
-@njit(cache=True)
+@njit(cache=True, nogil=True)
 def _drag_kernel(force, velocity, idx, k1, k2):
     for k in range(idx.shape[0]):
         _drag_particle(force, velocity, idx[k], k1, k2)
@@ -132,7 +132,7 @@ def _drag_kernel(force, velocity, idx, k1, k2):
 PARALLEL_MIN_PARTICLES = 50_000
 
 
-@njit(cache=True, parallel=True)
+@njit(cache=True, nogil=True, parallel=True)
 def _drag_all_kernel(force, velocity, k1, k2):
     """Drag on every particle: each row once, so the rows can run on all cores."""
     for i in prange(velocity.shape[0]):
@@ -178,7 +178,7 @@ class Drag(ForceGenerator):
                          self._k1, self._k2)
 
 
-@njit(cache=True)
+@njit(cache=True, nogil=True)
 def _buoyancy_kernel(force, position, idx, max_depth, volume, water_height, density, g):
     full = density * volume * g
     for k in range(idx.shape[0]):

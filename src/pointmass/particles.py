@@ -182,7 +182,7 @@ class Particles:
             getattr(self, "_" + name)[:n] = arr
 
 
-@njit(cache=True)
+@njit(cache=True, nogil=True)
 def _kinetic_energy(velocity, inv_mass):
     """Σ ½·|v|²/w over movable particles, in one pass without temporaries (it runs every step)."""
     total = 0.0

@@ -19,7 +19,7 @@ from .particles import Particles
 from .stability import spring_too_stiff
 
 
-@njit(cache=True)
+@njit(cache=True, nogil=True)
 def _spring_kernel(pos, vel, force, inv_mass, a, b, k, rest, damping, pull_only, h):
     """Add every spring's force; return the first spring too stiff for a step of h (its
     h²·ω² + 2·h·γ ≥ 4, see stability.py), or -1. Checked as the forces are added: no extra pass."""
@@ -54,7 +54,7 @@ def _spring_kernel(pos, vel, force, inv_mass, a, b, k, rest, damping, pull_only,
     return unstable
 
 
-@njit(cache=True)
+@njit(cache=True, nogil=True)
 def _anchored_kernel(pos, vel, force, inv_mass, idx, anchor, k, rest, damping, pull_only, h):
     """As ``_spring_kernel``, the other end fixed at ``anchor[s]``."""
     unstable = -1
@@ -251,7 +251,7 @@ class AnchoredBungee(AnchoredSpring):
     _pull_only = True
 
 
-@njit(cache=True)
+@njit(cache=True, nogil=True)
 def _fake_spring_kernel(pos, vel, force, inv_mass, idx, anchor, k, d, dt, expect_pos,
                         expect_vel, exact_vel, valid):
     for s in range(idx.shape[0]):

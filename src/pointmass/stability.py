@@ -58,7 +58,7 @@ def largest_stable_step(omega_sq: float, gamma: float) -> float:
     return (-gamma + math.sqrt(gamma * gamma + 4.0 * omega_sq)) / omega_sq
 
 
-@njit(cache=True)
+@njit(cache=True, nogil=True)
 def _jump_kernel(force, velocity, inv_mass, g, h, factor, floor):
     """The first movable particle whose velocity change this step would be non-finite or
     larger than factor × (|v| + |g|·h) + floor, or -1."""

@@ -70,7 +70,7 @@ def _integrate_particle(px, py, pz, vx, vy, vz, fx, fy, fz, w, d, g, dt):
     return px + vx * dt, py + vy * dt, pz + vz * dt, vx, vy, vz, ax, ay, az
 
 
-@njit(cache=True)
+@njit(cache=True, nogil=True)
 def _integrate(pos, vel, force, acc, inv_mass, damping, g, dt, out):
     """Integrate particles ``out[0]`` to ``out[1]`` (a chunk); stores into ``out[2]`` the first
     that is not finite (or -1) and into ``out[3]`` their kinetic energy after the step.
@@ -109,7 +109,7 @@ def _integrate(pos, vel, force, acc, inv_mass, damping, g, dt, out):
 CHUNK = 8192
 
 
-@njit(cache=True, parallel=True)
+@njit(cache=True, nogil=True, parallel=True)
 def _integrate_parallel(pos, vel, force, acc, inv_mass, damping, g, dt, out):
     """``_integrate`` on all cores, one chunk of ``CHUNK`` particles per task; the chunks'
     results are combined in chunk order (deterministic for any thread count)."""

@@ -39,19 +39,19 @@ EDGE_FLAG = 1 << 13
 PARALLEL = 1e-6
 
 
-@njit(cache=True)
+@njit(cache=True, nogil=True)
 def _dot(a, b):
     return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
 
 
-@njit(cache=True)
+@njit(cache=True, nogil=True)
 def _project(axes, h, n):
     """Half-width of a box (axes rows, half-extents h) along the unit direction n."""
     return (h[0] * abs(_dot(axes[0], n)) + h[1] * abs(_dot(axes[1], n))
             + h[2] * abs(_dot(axes[2], n)))
 
 
-@njit(cache=True)
+@njit(cache=True, nogil=True)
 def box_box(pa, qa, ha, pb, qb, hb, margin, normal, points, depth, ids):
     """Box A (centre, orientation (w, x, y, z), half-extents) against box B."""
     a = box_axes(qa)
@@ -101,7 +101,7 @@ def box_box(pa, qa, ha, pb, qb, hb, margin, normal, points, depth, ids):
     return _face_contact(pa, a, ha, best_a, pb, b, hb, 0, margin, normal, points, depth, ids)
 
 
-@njit(cache=True)
+@njit(cache=True, nogil=True)
 def _clip(poly, code, tag, count, m, off, side, out_poly, out_code, out_tag):
     """Keep the part of the polygon with m·x ≤ off. ``tag`` says what the edge leaving each
     vertex lies on (0–3 an incident edge, 4 + s the side plane s), so a new vertex gets an id
@@ -128,7 +128,7 @@ def _clip(poly, code, tag, count, m, off, side, out_poly, out_code, out_tag):
     return out
 
 
-@njit(cache=True)
+@njit(cache=True, nogil=True)
 def _face_contact(pr, r, hr, face, pi, inc, hi, flip, margin, normal, points, depth, ids):
     """Clip the incident box's face against the reference box's ``face`` axis. ``flip`` is 1
     when the reference box is B."""
@@ -202,7 +202,7 @@ def _face_contact(pr, r, hr, face, pi, inc, hi, flip, margin, normal, points, de
     return kept
 
 
-@njit(cache=True)
+@njit(cache=True, nogil=True)
 def _edge_contact(pa, a, ha, i, pb, b, hb, j, sep, normal, points, depth, ids):
     """One point between edge i of A and edge j of B, the pair whose cross separates most."""
     n = np.empty(3)

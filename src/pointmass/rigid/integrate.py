@@ -39,7 +39,7 @@ TOLERANCE = 1e-13
 MAX_TURN = 1.0
 
 
-@njit(cache=True)
+@njit(cache=True, nogil=True)
 def free_rotation(qw, qx, qy, qz, wx, wy, wz, ix, iy, iz, h):
     """Turn a torque-free body for h seconds; returns the new (qw, qx, qy, qz, wx, wy, wz).
 
@@ -65,7 +65,7 @@ def free_rotation(qw, qx, qy, qz, wx, wy, wz, ix, iy, iz, h):
     return qw, qx, qy, qz, wx, wy, wz
 
 
-@njit(cache=True)
+@njit(cache=True, nogil=True)
 def _turn(qw, qx, qy, qz, wx, wy, wz, ix, iy, iz, h):
     """One energy-momentum step of an asymmetric body (the module docstring's method)."""
     bx, by, bz = qrot_inv(qw, qx, qy, qz, wx, wy, wz)

@@ -40,7 +40,7 @@ def empty_outputs() -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
             np.full(MAX_POINTS, -1, dtype=np.int64))
 
 
-@njit(cache=True)
+@njit(cache=True, nogil=True)
 def reduce_points(cand, sep, count, normal, keep):
     """Choose at most 4 of ``count`` candidate points (cand (K, 3), separations sep (K,)) that
     keep the deepest point and the largest area, written as indices into ``keep`` (4,); returns

@@ -13,7 +13,7 @@ from .manifold import reduce_points
 from .scalar import qrot
 
 
-@njit(cache=True)
+@njit(cache=True, nogil=True)
 def box_axes(q):
     """World directions of the body axes of orientation q, as a (3, 3) array of rows."""
     axes = np.empty((3, 3))
@@ -26,7 +26,7 @@ def box_axes(q):
     return axes
 
 
-@njit(cache=True)
+@njit(cache=True, nogil=True)
 def box_plane(pb, qb, hb, n, d, margin, normal, points, depth, ids):
     """Box A (centre pb, orientation qb, half-extents hb) against the plane n·x = d (B)."""
     axes = box_axes(qb)

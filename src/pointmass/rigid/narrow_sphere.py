@@ -16,7 +16,7 @@ from .scalar import qrot, qrot_inv
 FALLBACK_NORMAL = (0.0, 1.0, 0.0)
 
 
-@njit(cache=True)
+@njit(cache=True, nogil=True)
 def sphere_plane(c, r, n, d, margin, normal, points, depth, ids):
     """Sphere (centre c (3,), radius r) against the plane n·x = d (unit n (3,)). A = sphere."""
     dist = c[0] * n[0] + c[1] * n[1] + c[2] * n[2] - d
@@ -32,7 +32,7 @@ def sphere_plane(c, r, n, d, margin, normal, points, depth, ids):
     return 1
 
 
-@njit(cache=True)
+@njit(cache=True, nogil=True)
 def sphere_sphere(ca, ra, cb, rb, margin, normal, points, depth, ids):
     """Sphere A (ca, ra) against sphere B (cb, rb)."""
     dx, dy, dz = ca[0] - cb[0], ca[1] - cb[1], ca[2] - cb[2]
@@ -55,7 +55,7 @@ def sphere_sphere(ca, ra, cb, rb, margin, normal, points, depth, ids):
     return 1
 
 
-@njit(cache=True)
+@njit(cache=True, nogil=True)
 def sphere_box(c, r, pb, qb, hb, margin, normal, points, depth, ids):
     """Sphere A (c, r) against box B (centre pb, orientation qb, half-extents hb).
 

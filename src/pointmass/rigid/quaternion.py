@@ -8,7 +8,7 @@ import numpy as np
 from numba import njit
 
 
-@njit(cache=True)
+@njit(cache=True, nogil=True)
 def quat_mul(a: np.ndarray, b: np.ndarray) -> np.ndarray:
     """Hamilton product a*b (apply b, then a)."""
     out = np.empty(4)
@@ -19,13 +19,13 @@ def quat_mul(a: np.ndarray, b: np.ndarray) -> np.ndarray:
     return out
 
 
-@njit(cache=True)
+@njit(cache=True, nogil=True)
 def quat_conj(q: np.ndarray) -> np.ndarray:
     """Conjugate, the inverse of a unit quaternion."""
     return np.array([q[0], -q[1], -q[2], -q[3]])
 
 
-@njit(cache=True)
+@njit(cache=True, nogil=True)
 def quat_normalize(q: np.ndarray) -> np.ndarray:
     """q / |q|; the identity for a zero quaternion (never NaN)."""
     n = np.sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3])
@@ -34,7 +34,7 @@ def quat_normalize(q: np.ndarray) -> np.ndarray:
     return q / n
 
 
-@njit(cache=True)
+@njit(cache=True, nogil=True)
 def quat_from_axis_angle(axis: np.ndarray, angle: float) -> np.ndarray:
     """Rotation by ``angle`` radians about ``axis`` (normalised here; zero axis -> identity)."""
     n = np.sqrt(axis[0] ** 2 + axis[1] ** 2 + axis[2] ** 2)
@@ -44,7 +44,7 @@ def quat_from_axis_angle(axis: np.ndarray, angle: float) -> np.ndarray:
     return np.array([np.cos(0.5 * angle), axis[0] * s, axis[1] * s, axis[2] * s])
 
 
-@njit(cache=True)
+@njit(cache=True, nogil=True)
 def quat_to_matrix(q: np.ndarray) -> np.ndarray:
     """3x3 rotation matrix of a unit quaternion."""
     w, x, y, z = q[0], q[1], q[2], q[3]
@@ -61,19 +61,19 @@ def quat_to_matrix(q: np.ndarray) -> np.ndarray:
     return m
 
 
-@njit(cache=True)
+@njit(cache=True, nogil=True)
 def rotate(q: np.ndarray, v: np.ndarray) -> np.ndarray:
     """Rotate body-space vector v (3,) into world space."""
     return mat_vec(quat_to_matrix(q), v)
 
 
-@njit(cache=True)
+@njit(cache=True, nogil=True)
 def inv_rotate(q: np.ndarray, v: np.ndarray) -> np.ndarray:
     """Rotate world-space vector v (3,) into body space."""
     return mat_vec(quat_to_matrix(q).T, v)
 
 
-@njit(cache=True)
+@njit(cache=True, nogil=True)
 def cross(a: np.ndarray, b: np.ndarray) -> np.ndarray:
     """a x b for (3,) vectors."""
     return np.array(
@@ -81,13 +81,13 @@ def cross(a: np.ndarray, b: np.ndarray) -> np.ndarray:
     )
 
 
-@njit(cache=True)
+@njit(cache=True, nogil=True)
 def skew(a: np.ndarray) -> np.ndarray:
     """Matrix S with S @ b == a x b."""
     return np.array([[0.0, -a[2], a[1]], [a[2], 0.0, -a[0]], [-a[1], a[0], 0.0]])
 
 
-@njit(cache=True)
+@njit(cache=True, nogil=True)
 def world_inv_inertia(q: np.ndarray, inv_inertia_body: np.ndarray) -> np.ndarray:
     """R diag(inv_inertia_body) R^T: world inverse inertia (3,3) from principal values (3,)."""
     r = quat_to_matrix(q)
@@ -99,7 +99,7 @@ def world_inv_inertia(q: np.ndarray, inv_inertia_body: np.ndarray) -> np.ndarray
     return out
 
 
-@njit(cache=True)
+@njit(cache=True, nogil=True)
 def mat_vec(m: np.ndarray, v: np.ndarray) -> np.ndarray:
     """m (3,3) times v (3,), in plain loops (numba's @ would need scipy)."""
     out = np.zeros(3)

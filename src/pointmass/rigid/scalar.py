@@ -11,7 +11,7 @@ import math
 from numba import njit
 
 
-@njit(cache=True)
+@njit(cache=True, nogil=True)
 def qrot(qw, qx, qy, qz, vx, vy, vz):
     """Rotate (vx, vy, vz) by the unit quaternion q (body space -> world space)."""
     # v' = v + 2w (u x v) + 2 u x (u x v), u = (qx, qy, qz)
@@ -23,13 +23,13 @@ def qrot(qw, qx, qy, qz, vx, vy, vz):
             vz + qw * tz + (qx * ty - qy * tx))
 
 
-@njit(cache=True)
+@njit(cache=True, nogil=True)
 def qrot_inv(qw, qx, qy, qz, vx, vy, vz):
     """Rotate (vx, vy, vz) by the conjugate of q (world space -> body space)."""
     return qrot(qw, -qx, -qy, -qz, vx, vy, vz)
 
 
-@njit(cache=True)
+@njit(cache=True, nogil=True)
 def qmul(aw, ax, ay, az, bw, bx, by, bz):
     """Hamilton product a*b (apply b, then a)."""
     return (aw * bw - ax * bx - ay * by - az * bz,
@@ -38,7 +38,7 @@ def qmul(aw, ax, ay, az, bw, bx, by, bz):
             aw * bz + ax * by - ay * bx + az * bw)
 
 
-@njit(cache=True)
+@njit(cache=True, nogil=True)
 def qnormalize(qw, qx, qy, qz):
     """q / |q|; the identity for a zero quaternion (never NaN)."""
     n = math.sqrt(qw * qw + qx * qx + qy * qy + qz * qz)
@@ -47,7 +47,7 @@ def qnormalize(qw, qx, qy, qz):
     return qw / n, qx / n, qy / n, qz / n
 
 
-@njit(cache=True)
+@njit(cache=True, nogil=True)
 def qexp(wx, wy, wz, h):
     """Unit quaternion of a rotation by the angle h·|w| about w: the exact rotation of a constant
     angular velocity w [rad/s] over h [s] (not the first-order q + ½h(0, w)q, which stretches q
@@ -60,7 +60,7 @@ def qexp(wx, wy, wz, h):
     return math.cos(half), wx * s, wy * s, wz * s
 
 
-@njit(cache=True)
+@njit(cache=True, nogil=True)
 def axis_rotate(ax, ay, az, angle, vx, vy, vz):
     """Rotate v by ``angle`` [rad] about the axis a (need not be unit; zero -> v), Rodrigues."""
     n = math.sqrt(ax * ax + ay * ay + az * az)
@@ -75,7 +75,7 @@ def axis_rotate(ax, ay, az, angle, vx, vy, vz):
             vz * c + (ux * vy - uy * vx) * s + uz * d)
 
 
-@njit(cache=True)
+@njit(cache=True, nogil=True)
 def solve3(a00, a01, a02, a10, a11, a12, a20, a21, a22, bx, by, bz):
     """Solve the 3x3 system A x = b by Cramer's rule; (0, 0, 0) if A is singular."""
     c00 = a11 * a22 - a12 * a21

@@ -26,7 +26,7 @@ from .scalar import qrot
 MAX_ROTATION = 0.25 * math.pi
 
 
-@njit(cache=True)
+@njit(cache=True, nogil=True)
 def integrate_velocities(vel, ang, force, torque, inv_mass, inv_inertia, inv_inertia_world,
                          lin_damping, ang_damping, g, dt):
     """The kick for every body. Gravity g [m/s²] (3,) acts only on bodies of finite mass, and a
@@ -58,7 +58,7 @@ def integrate_velocities(vel, ang, force, torque, inv_mass, inv_inertia, inv_ine
             ang[i, 2] = wz
 
 
-@njit(cache=True)
+@njit(cache=True, nogil=True)
 def integrate_positions(pos, quat, vel, ang, inv_inertia, inv_inertia_world, dt):
     """The drift for every body; returns the first body that is not finite afterwards, or -1."""
     bad = -1

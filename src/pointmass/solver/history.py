@@ -13,7 +13,7 @@ import numpy as np
 from numba import njit
 
 
-@njit(cache=True)
+@njit(cache=True, nogil=True)
 def _find_rows(old_keys, keys, out):
     """out[c] = the row of keys[c] in the sorted ``old_keys``, or -1.
 

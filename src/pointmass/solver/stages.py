@@ -25,7 +25,7 @@ from .kernels import (
 )
 
 
-@njit(cache=True)
+@njit(cache=True, nogil=True)
 def prepare(bod, con, dt):
     """Per contact: inverse masses, effective mass k = 1/(wa + wb) (0 when both ends are
     immovable), the closing speed this step's accelerations could have produced (acc_sep ≤ 0,
@@ -54,7 +54,7 @@ def prepare(bod, con, dt):
         target[c] = d / dt if d < 0.0 and not bil[c] else 0.0  # a rod: held, not a gap
 
 
-@njit(cache=True)
+@njit(cache=True, nogil=True)
 def impacts(bod, con, dt, threshold, tolerance, max_passes):
     """Collisions, by Millington's sequential propagation: pass over the contacts in order; a
     contact closing faster than this step's acceleration explains (an impact, not a resting
@@ -104,7 +104,7 @@ def impacts(bod, con, dt, threshold, tolerance, max_passes):
     return passes, used
 
 
-@njit(cache=True)
+@njit(cache=True, nogil=True)
 def warm_start(bod, con, dt):
     """Apply each contact's remembered impulses (normal, then friction kept in this step's
     contact plane and friction disc), so a resting pile starts out solved."""
@@ -127,7 +127,7 @@ def warm_start(bod, con, dt):
             t[c, 2] = 0.0
 
 
-@njit(cache=True)
+@njit(cache=True, nogil=True)
 def solve_velocities(bod, con, dt, tolerance, max_passes):
     """Sequential impulses (Catto; box2d-lite's ``Arbiter::ApplyImpulse``): Gauss–Seidel passes
     over every contact, each keeping an accumulated impulse clamped at ≥ 0 (contacts push, never
@@ -177,7 +177,7 @@ def solve_velocities(bod, con, dt, tolerance, max_passes):
     return passes, used
 
 
-@njit(cache=True)
+@njit(cache=True, nogil=True)
 def project_positions(bod, con, tolerance, max_passes):
     """Interpenetration: Gauss–Seidel passes moving each contact's particles apart along n by
     inverse mass, until no penetration exceeds ``tolerance`` [m], at most ``max_passes``.
@@ -219,7 +219,7 @@ def project_positions(bod, con, tolerance, max_passes):
     return passes, largest
 
 
-@njit(cache=True)
+@njit(cache=True, nogil=True)
 def current_depths(bod, con, out):
     """Each contact's penetration after solving [m]."""
     ca, cb, n, depth0, disp = con.a, con.b, con.n, con.depth0, bod.disp
@@ -227,7 +227,7 @@ def current_depths(bod, con, out):
         out[c] = depth0[c] - relative(disp, ca, cb, n, c)
 
 
-@njit(cache=True)
+@njit(cache=True, nogil=True)
 def worst_first(bod, con, dt, threshold, iterations):
     """The book's loop: resolve the single worst contact, up to ``iterations`` times; stop early
     when none is closing or penetrating. "Worst" is the most negative separating velocity, as
