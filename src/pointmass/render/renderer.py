@@ -3,8 +3,9 @@
 A window blits ``renderer.fbo`` to its screen; screenshots, videos and notebook clips read it with
 ``read_rgb``. Nothing here reads the default framebuffer (Mesa leaves GL errors when one does).
 
-Per frame: one upload of every sphere (centre, radius, color) into one float32 buffer, one of
-every line; then background, ground grid, boxes and opaque planes, blob shadows (the sphere
+Per frame: ``capture`` copies what to draw out of the scene (a ``FrameState``: every sphere
+as centre, radius, color in float32 rows, every line), ``draw`` uploads it in one buffer each;
+then background, ground grid, boxes and opaque planes, blob shadows (the sphere
 buffer again, as flat discs), sphere impostors, lines, translucent planes, and last the glowing
 particles and their trails, added onto the image (order-free, so never sorted).
 """
@@ -20,8 +21,8 @@ import numpy as np
 from ..scene import Scene
 from . import gather, geometry, style
 from .camera import OrbitCamera
+from .frame import FrameState
 from .instances import Instances
-from .picking import drawn_radii
 from .shaders import load_program
 from .shadows import ShadowMap
 
@@ -143,7 +144,7 @@ class Renderer:
     # -- drawing -------------------------------------------------------------------------------
     def render(self, scene: Scene, camera: OrbitCamera, *, trails=None,
                show_contacts: bool = False, extra_lines=None) -> None:
-        """Draw ``scene`` as seen by ``camera`` into ``fbo``.
+        """Draw ``scene`` as seen by ``camera`` into ``fbo`` (``draw(capture(scene))``).
 
         Args:
             trails: The running Simulation's ``Trails`` (recorded paths of ``scene.trails``), or
@@ -152,6 +153,19 @@ class Renderer:
                 normal).
             extra_lines: Optional list of (start (3,), end (3,), rgb) [m], e.g. a mouse spring.
         """
+        self.draw(self.capture(scene, trails=trails, show_contacts=show_contacts,
+                               extra_lines=extra_lines), camera)
+
+    def capture(self, scene: Scene, *, trails=None, show_contacts: bool = False,
+                extra_lines=None) -> FrameState:
+        """What ``render`` would draw of ``scene`` now, copied (``FrameState``): draw it later
+        with ``draw``, while the simulation steps on (the window does)."""
+        return FrameState.capture(scene, trails=trails, show_contacts=show_contacts,
+                                  extra_lines=extra_lines,
+                                  width_scale=max(1.0, self.size[1] / 720.0))
+
+    def draw(self, frame: FrameState, camera: OrbitCamera) -> None:
+        """Draw a captured frame as seen by ``camera`` into ``fbo``."""
         ctx = self.ctx
         w, h = self.size
         view = camera.view_matrix()
@@ -160,22 +174,16 @@ class Renderer:
         rot = view[:3, :3].astype(np.float64)           # world -> eye rotation (row vectors)
         light_world = rot @ style.LIGHT_EYE              # eye -> world: v @ rot.T
         sky_eye = np.array([0.0, 1.0, 0.0]) @ rot
-        width_scale = max(1.0, h / 720.0)
 
-        n_spheres = self._upload_spheres(scene)
-        n_lines = self._upload_lines(scene, width_scale, trails)
-        glow_trails = gather.trail_lines(scene, trails, scene.particle_colors(), width_scale,
-                                         glowing=True) if trails is not None and len(trails) \
-            else []
-        n_glow_trails = self._glow_trails.put(np.concatenate(glow_trails)) if glow_trails else 0
+        n_spheres = self._spheres.put(frame.spheres) if len(frame.spheres) else 0
+        n_lines = self._lines.put(frame.lines) if len(frame.lines) else 0
+        n_glow_trails = self._glow_trails.put(frame.glow_trails) if len(frame.glow_trails) \
+            else 0
         n_glow = int(self._spheres.host[:n_spheres, 7].sum()) if n_spheres else 0
-        overlay = []
-        if show_contacts:
-            overlay += gather.contact_lines(scene, drawn_radii(scene), width_scale)
-        overlay += gather.extra_line_rows(extra_lines, width_scale)
-        n_overlay = self._overlay.put(np.concatenate(overlay)) if overlay else 0
+        n_overlay = self._overlay.put(frame.overlay) if len(frame.overlay) else 0
+        scene = frame                                # the backdrop, boxes and planes
         if scene.show_ground:
-            n = scene.world.particles.count           # anchors cast no shadow
+            n = frame.particles                      # anchors cast no shadow
             self._shadows.update(scene, self._spheres.host[:n], self._spheres.vaos["shadow_map"],
                                  style.SHADOW_STRENGTH)
 
@@ -268,7 +276,7 @@ class Renderer:
                                               instances=n_spheres)
         ctx.blend_func = moderngl.DEFAULT_BLENDING
 
-    def _draw_backdrop(self, fbo: moderngl.Framebuffer, scene: Scene, camera: OrbitCamera,
+    def _draw_backdrop(self, fbo: moderngl.Framebuffer, scene: FrameState, camera: OrbitCamera,
                        vp: np.ndarray) -> None:
         """Clear ``fbo`` and draw the ground grid and the sky gradient into it."""
         ctx = self.ctx
@@ -289,33 +297,7 @@ class Renderer:
         self._vaos["background"].render(moderngl.TRIANGLE_STRIP, vertices=3)
         ctx.depth_func = "<"
 
-    def _upload_spheres(self, scene: Scene) -> int:
-        """Particles then anchor markers, one row each, in one upload; returns the rows."""
-        anchors = gather.anchor_points(scene) if scene.show_links else np.zeros((0, 3))
-        self._spheres.reserve(scene.world.particles.count + len(anchors))
-        rows = gather.fill_spheres(scene, self._spheres.host, anchors)
-        self._spheres.upload(rows)
-        return rows
-
-    def _upload_lines(self, scene: Scene, width_scale: float, trails) -> int:
-        parts: list[np.ndarray] = []
-        if scene.show_links:
-            parts += gather.link_lines(scene, width_scale)
-        if trails is not None and len(trails):
-            parts += gather.trail_lines(scene, trails, scene.particle_colors(), width_scale)
-        for box in scene.boxes:
-            start, end = geometry.box_edges(box.center, box.half_size, box.rotation)
-            rgb = np.asarray(box.color) * (1.0 if box.wireframe else 0.45)
-            width = (2.0 if box.wireframe else 1.5) * width_scale
-            parts.append(gather._rows(start, end, rgb, 1.0, width, 0.0))
-        rows = sum(len(p) for p in parts)
-        if rows:
-            self._lines.reserve(rows)
-            np.concatenate(parts, out=self._lines.host[:rows])
-            self._lines.upload(rows)
-        return rows
-
-    def _draw_ground(self, scene: Scene, camera: OrbitCamera, vp: np.ndarray,
+    def _draw_ground(self, scene: FrameState, camera: OrbitCamera, vp: np.ndarray,
                      sky: style.Sky) -> None:
         g = self.programs["ground"]
         t = camera.target
@@ -330,7 +312,8 @@ class Renderer:
         g["u_fog"].value = sky.horizon
         self._vaos["ground"].render(moderngl.TRIANGLE_STRIP, vertices=4)
 
-    def _draw_meshes(self, scene: Scene, vp: np.ndarray, light_world, translucent: bool) -> None:
+    def _draw_meshes(self, scene: FrameState, vp: np.ndarray, light_world,
+                     translucent: bool) -> None:
         mesh = self.programs["mesh"]
         items = []
         if not translucent:

@@ -1,0 +1,108 @@
+"""A frozen copy of what the renderer reads from a Scene: one frame's state, drawable later.
+
+``FrameState.capture`` pulls every sphere, line and piece of geometry the renderer draws out of
+a Scene (and its Simulation's trails) into arrays and copies of its own. Nothing in it refers
+back to the world, so once captured the simulation may step on in another thread while the
+frame is drawn (the window does: ``pointmass.app.viewer``). ``Renderer.render(scene)`` is
+``Renderer.draw(capture(scene))``: one path for every caller, so a frame drawn from a capture
+and one drawn at once are the same pixels.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+from dataclasses import dataclass
+
+import numpy as np
+
+from ..scene import BoxVisual, PlaneVisual, Scene
+from . import gather, geometry
+from .picking import drawn_radii
+
+_NO_LINES = np.zeros((0, gather.LINE_FLOATS), np.float32)
+
+
+@dataclass(frozen=True)
+class FrameState:
+    """One frame of a scene, as the renderer draws it.
+
+    Attributes:
+        time: The world's clock when it was captured [s].
+        particles: How many of the sphere rows are particles (the anchor markers follow).
+        spheres: Sphere rows (``gather.SPHERE_FLOATS`` float32 each): particles then anchors.
+        lines: Line rows (``gather.LINE_FLOATS``): links, plain trails, box edges.
+        glow_trails: Line rows of glowing particles' trails (added onto the image).
+        overlay: Line rows drawn over everything: contacts (when shown), caller lines.
+        boxes, planes: Copies of the scene's boxes and planes.
+        show_ground, ground_height, sky: The scene's backdrop.
+    """
+
+    time: float
+    particles: int
+    spheres: np.ndarray
+    lines: np.ndarray
+    glow_trails: np.ndarray
+    overlay: np.ndarray
+    boxes: tuple[BoxVisual, ...]
+    planes: tuple[PlaneVisual, ...]
+    show_ground: bool
+    ground_height: float
+    sky: object
+
+    @classmethod
+    def capture(cls, scene: Scene, *, trails=None, show_contacts: bool = False,
+                extra_lines=None, width_scale: float = 1.0) -> FrameState:
+        """Copy what the renderer needs out of ``scene`` now.
+
+        Args:
+            trails: The running Simulation's ``Trails`` (or None: no trails).
+            show_contacts: Also take the world's current contacts (lines along the normals).
+            extra_lines: (start, end, rgb) triples drawn on top (the viewer's drag spring).
+            width_scale: Line widths' scale (the renderer's: its height / 720, at least 1).
+        """
+        n = scene.world.particles.count
+        anchors = gather.anchor_points(scene) if scene.show_links else np.zeros((0, 3))
+        spheres = np.empty((n + len(anchors), gather.SPHERE_FLOATS), np.float32)
+        gather.fill_spheres(scene, spheres, anchors)
+
+        have_trails = trails is not None and len(trails)
+        parts: list[np.ndarray] = []
+        if scene.show_links:
+            parts += gather.link_lines(scene, width_scale)
+        if have_trails:
+            parts += gather.trail_lines(scene, trails, scene.particle_colors(), width_scale)
+        for box in scene.boxes:
+            start, end = geometry.box_edges(box.center, box.half_size, box.rotation)
+            rgb = np.asarray(box.color) * (1.0 if box.wireframe else 0.45)
+            width = (2.0 if box.wireframe else 1.5) * width_scale
+            parts.append(gather._rows(start, end, rgb, 1.0, width, 0.0))
+        glow = gather.trail_lines(scene, trails, scene.particle_colors(), width_scale,
+                                  glowing=True) if have_trails else []
+        overlay = []
+        if show_contacts:
+            overlay += gather.contact_lines(scene, drawn_radii(scene), width_scale)
+        overlay += gather.extra_line_rows(extra_lines, width_scale)
+        return cls(time=float(scene.world.time), particles=n, spheres=spheres,
+                   lines=_joined(parts), glow_trails=_joined(glow), overlay=_joined(overlay),
+                   boxes=tuple(_copy_box(b) for b in scene.boxes),
+                   planes=tuple(_copy_plane(p) for p in scene.planes),
+                   show_ground=bool(scene.show_ground),
+                   ground_height=float(scene.ground_height), sky=scene.sky)
+
+
+def _joined(parts: list[np.ndarray]) -> np.ndarray:
+    return np.concatenate(parts).astype(np.float32, copy=False) if parts else _NO_LINES
+
+
+def _copy_box(b: BoxVisual) -> BoxVisual:
+    return dataclasses.replace(b, center=np.array(b.center, np.float64),
+                               half_size=np.array(b.half_size, np.float64),
+                               rotation=np.array(b.rotation, np.float64),
+                               color=tuple(float(c) for c in b.color))
+
+
+def _copy_plane(p: PlaneVisual) -> PlaneVisual:
+    return dataclasses.replace(p, center=np.array(p.center, np.float64),
+                               normal=np.array(p.normal, np.float64),
+                               half_size=tuple(float(h) for h in p.half_size),
+                               color=tuple(float(c) for c in p.color))
