@@ -14,8 +14,11 @@ __all__ = ["NoDisplayError", "open_window", "run_demo", "show"]
 
 
 def open_window(sim, *, title: str = "pointmass", paused: bool = False, size=(1280, 720),
-                output_dir=".", visible: bool = True, demo_name: str | None = None):
+                output_dir=".", visible: bool = True, demo_name: str | None = None,
+                overlap: bool | None = None):
     """Open a ``ViewerWindow`` on a Simulation (not yet running its loop: call ``.run()``).
+    ``overlap``: step physics in a worker thread while drawing (default: on, unless
+    ``POINTMASS_OVERLAP=0``; see ``pointmass.app.viewer``).
 
     Raises:
         NoDisplayError: no display (or pyglet cannot connect to it).
@@ -35,7 +38,7 @@ def open_window(sim, *, title: str = "pointmass", paused: bool = False, size=(12
         raise
     try:
         return ViewerWindow(sim, title=title, size=size, paused=paused,
-                            output_dir=output_dir, visible=visible)
+                            output_dir=output_dir, visible=visible, overlap=overlap)
     except Exception as exc:
         if type(exc).__name__ == "NoSuchDisplayException":
             raise NoDisplayError(no_display_message(demo_name, str(exc))) from None

@@ -5,12 +5,24 @@ One frame is ``update(real_dt)`` (the playback clock turns real time into simula
 ``Simulation.advance`` into fixed steps) and then ``draw(screen)`` (scene into the offscreen
 FBO, blitted to ``screen``, panel on top). Drawing never steps physics. The live plots read a
 ``Probe`` the viewer adds to the Simulation: the same object a notebook would plot.
+
+Overlap (on by default; ``Viewer(overlap=False)`` or ``POINTMASS_OVERLAP=0`` turns it off):
+``update`` only works out the steps the frame owes, and ``draw`` builds the panel (which reads
+and may change the simulation), captures what the renderer reads (``FrameState``), and then
+runs those steps in one worker thread while it draws the capture: the picture is the state
+before the frame's steps, one frame behind the physics. The step's numba kernels release the
+GIL, so the two share the cores. Everything that touches the simulation — the next ``update``,
+keys, mouse, panel changes, reset, close — first waits for the worker (``join_physics``); no
+lock is held while drawing. The steps and their order are those of stepping in line, so the
+trajectory is bit for bit the same (tests/app/test_overlap.py).
 """
 
 from __future__ import annotations
 
+import os
 import sys
 import time
+from concurrent.futures import Future, ThreadPoolExecutor
 from pathlib import Path
 
 import numpy as np
@@ -43,11 +55,24 @@ class Viewer:
         paused: Start paused.
         output_dir: Where screenshots and videos go.
         stem: File name start for captures.
+        overlap: Step the frame's physics in a worker thread while drawing (default: on,
+            unless the environment sets ``POINTMASS_OVERLAP=0``).
     """
 
     def __init__(self, ctx, sim, size: tuple[int, int], *, paused: bool = False,
-                 output_dir: Path | str = ".", stem: str = "pointmass") -> None:
+                 output_dir: Path | str = ".", stem: str = "pointmass",
+                 overlap: bool | None = None) -> None:
         self.ctx, self.sim = ctx, sim
+        self.overlap = overlap_default() if overlap is None else bool(overlap)
+        #: The one worker thread, its running job, and the steps the next draw runs in it.
+        self._worker: ThreadPoolExecutor | None = None
+        self._running: Future | None = None
+        self._due: tuple[float, int, float] | None = None
+        self._running_due = self._due
+        #: Seconds the last joined frame's steps took (in the worker with overlap).
+        self.physics_seconds = 0.0
+        #: Main-thread seconds the last frame spent drawing (capture, render, blit, panel).
+        self.draw_seconds = 0.0
         self.clock = PlaybackClock(paused=paused)
         self.camera = OrbitCamera.from_hint(sim.scene.camera)
         self.show_panel, self.show_help, self.show_contacts = True, False, False
@@ -101,20 +126,68 @@ class Viewer:
 
     # -- time -----------------------------------------------------------------------------------
     def update(self, real_dt: float) -> int:
-        """Run the physics steps this frame owes; returns how many ran."""
-        clock, sim = self.clock, self.sim
-        t0 = time.perf_counter()
+        """Work out the physics steps this frame owes. In line (``overlap`` off) they run here
+        and the count is returned; with overlap the following ``draw`` runs them beside the
+        drawing and this returns 0 (the stats count them when they are joined)."""
+        self.join_physics()
+        if self._due is not None:        # an update with no draw since: run its steps now
+            self._finish(*self._due, *self._physics(*self._due[:2]))
+            self._due = None
+        clock = self.clock
         if clock.paused:
-            steps = clock.take_single_steps()
-            for _ in range(steps):
+            due = (0.0, clock.take_single_steps(), real_dt)
+        else:
+            due = (clock.seconds(real_dt), 0, real_dt)
+        if self.overlap:
+            self._due = due
+            return 0
+        steps, physics = self._physics(*due[:2])
+        self._finish(*due, steps, physics)
+        return steps
+
+    def _physics(self, seconds: float, single: int) -> tuple[int, float]:
+        """Run a frame's steps (``seconds`` of playback, or ``single`` steps while paused);
+        returns the steps and the seconds they took. In the worker thread with overlap."""
+        sim = self.sim
+        t0 = time.perf_counter()
+        if single:
+            for _ in range(single):
                 sim.step()
+            steps = single
         else:
             # Capped in steps and in time: big scenes stay interactive (slow motion instead).
-            steps = sim.advance(clock.seconds(real_dt), max_steps=clock.max_steps,
+            steps = sim.advance(seconds, max_steps=self.clock.max_steps,
                                 max_wall_seconds=self.physics_budget)
-        physics = time.perf_counter() - t0
-        self.stats.frame(real_dt, steps * sim.dt, steps, physics)
-        return steps
+        return steps, time.perf_counter() - t0
+
+    def _finish(self, seconds: float, single: int, real_dt: float, steps: int,
+                physics: float) -> None:
+        self.physics_seconds = physics
+        self.stats.frame(real_dt, steps * self.sim.dt, steps, physics)
+
+    def _start_physics(self) -> None:
+        """Start the steps ``update`` left for this frame in the worker thread."""
+        due, self._due = self._due, None
+        if due is None:
+            return
+        if not (due[0] > 0 or due[1]):             # paused: nothing to run
+            self._finish(*due, 0, 0.0)
+            return
+        if self._worker is None:
+            self._worker = ThreadPoolExecutor(1, thread_name_prefix="pointmass-physics")
+        self._running, self._running_due = self._worker.submit(self._physics, *due[:2]), due
+
+    def join_physics(self) -> None:
+        """Wait for the worker's steps, if any run (before anything touches the simulation);
+        an error raised in a step is raised here."""
+        running, self._running = self._running, None
+        if running is not None:
+            steps, physics = running.result()
+            self._finish(*self._running_due, steps, physics)
+
+    @property
+    def physics_running(self) -> bool:
+        return self._running is not None
 
     def _watch(self) -> None:
         """(Re)attach the live plots' probe: energies and the scene's own plot quantities."""
@@ -130,24 +203,35 @@ class Viewer:
 
     # -- drawing --------------------------------------------------------------------------------
     def draw(self, screen) -> None:
-        """Scene into the FBO, copied to ``screen``, the panel over it."""
-        r = self.renderer
-        self.camera.track(self.sim.scene)
-        r.render(self.sim.scene, self.camera, trails=self.sim.trails,
-                 show_contacts=self.show_contacts, extra_lines=self.mouse.extra_lines())
+        """The panel, then the scene into the FBO, copied to ``screen``, the panel over it.
+
+        With overlap the frame's steps run in the worker from the capture of the scene to the
+        next ``join_physics``; the panel is built before, as it reads the simulation (and a
+        slider or Reset changes it)."""
+        self.join_physics()
+        t0 = time.perf_counter()
+        imgui.new_frame()
+        self.panel.draw(self, show_panel=self.show_panel)
+        imgui.render()
+        gui = time.perf_counter() - t0
+        r, sim = self.renderer, self.sim
+        self.camera.track(sim.scene)
+        frame = r.capture(sim.scene, trails=sim.trails, show_contacts=self.show_contacts,
+                          extra_lines=self.mouse.extra_lines())
+        self._start_physics()               # the simulation is not touched from here on
+        r.draw(frame, self.camera)
         if self.recorder is not None:
-            self.recorder.offer(r.read_rgb, self.sim.time)
+            self.recorder.offer(r.read_rgb, frame.time)
             if self.recorder.error is not None:
                 self.stop_recording()
         screen.use()
         screen.clear(*_BEHIND_PANEL)
         self.blitter.draw(r.color_texture, screen, x=self.view_x)
-        t0 = time.perf_counter()
-        imgui.new_frame()
-        self.panel.draw(self, show_panel=self.show_panel)
-        imgui.render()
+        t1 = time.perf_counter()
         self.gui.render(imgui.get_draw_data())
-        self.stats.gui_ms = 1e3 * (time.perf_counter() - t0)
+        t2 = time.perf_counter()
+        self.stats.gui_ms = 1e3 * (gui + t2 - t1)
+        self.draw_seconds = t2 - t0
 
     def resize(self, size: tuple[int, int], pixel_ratio: float | None = None) -> None:
         if size[0] > 0 and size[1] > 0:
@@ -159,6 +243,7 @@ class Viewer:
     # -- actions (keys, panel buttons) ----------------------------------------------------------
     def key(self, name: str, *, ctrl: bool = False) -> str | None:
         """A key press by name; returns the action or demo key it triggered."""
+        self.join_physics()
         action = self.keymap.resolve(name, ctrl=ctrl)
         if action.kind == "demo":
             self.sim.press(action.name)
@@ -169,6 +254,7 @@ class Viewer:
         return None
 
     def act(self, action: str) -> None:
+        self.join_physics()
         clock = self.clock
         if action == "pause":
             clock.toggle_pause()
@@ -201,6 +287,7 @@ class Viewer:
     def frame_all(self) -> None:
         """Point the camera at every visible particle, keeping its direction (F, as in Blender
         and MuJoCo's viewer)."""
+        self.join_physics()
         from ..scene import CameraHint
 
         scene = self.sim.scene
@@ -214,6 +301,7 @@ class Viewer:
 
     def set_param(self, name: str, value) -> None:
         """From the panel: live parameters apply at once, rebuild ones rebuild the scene."""
+        self.join_physics()
         before = self.sim.scene
         self.sim.set_param(name, value)
         if self.sim.scene is not before:
@@ -223,6 +311,7 @@ class Viewer:
     def set_world(self, name, value) -> None:
         """From the panel: change a world setting (a name, or ("restitution", generator index))
         and remember it, so a reset or a rebuild keeps what the user chose."""
+        self.join_physics()
         self.world_overrides[name] = value
         self._apply_world(name, value)
 
@@ -269,7 +358,17 @@ class Viewer:
         print(f"pointmass: {text}", file=sys.stderr)
 
     def close(self) -> None:
-        """Finish a recording, free GL objects, destroy the ImGui contexts."""
+        """Wait for the worker, finish a recording, free GL objects, destroy the ImGui
+        contexts."""
+        try:
+            self.join_physics()
+        finally:
+            if self._worker is not None:
+                self._worker.shutdown()
+                self._worker = None
+            self._release()
+
+    def _release(self) -> None:
         self.stop_recording()
         self.mouse.end_grab()
         self.gui.release()
@@ -277,3 +376,9 @@ class Viewer:
         self.renderer.release()
         implot.destroy_context(self.implot_ctx)
         imgui.destroy_context(self.imgui_ctx)
+
+
+def overlap_default() -> bool:
+    """Overlap physics with drawing unless ``POINTMASS_OVERLAP`` is 0 (or off, false, no)."""
+    return os.environ.get("POINTMASS_OVERLAP", "1").strip().lower() not in ("0", "off",
+                                                                          "false", "no")

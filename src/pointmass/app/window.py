@@ -34,7 +34,7 @@ class ViewerWindow(pyglet.window.Window):
     viewer: Viewer | None = None        # None before the GL set-up and after close
 
     def __init__(self, sim, *, title: str = "pointmass", size=(1280, 720), paused=False,
-                 output_dir=".", visible=True) -> None:
+                 output_dir=".", visible=True, overlap: bool | None = None) -> None:
         config = pyglet.gl.Config(major_version=3, minor_version=3, forward_compatible=True,
                                   double_buffer=True, depth_size=24)
         super().__init__(size[0], size[1], caption=title, resizable=True, config=config,
@@ -46,18 +46,29 @@ class ViewerWindow(pyglet.window.Window):
         self.gl_screen = self.ctx.detect_framebuffer(0)
         stem = "pointmass-" + getattr(getattr(sim, "demo", None), "name", "scene")
         self.viewer = Viewer(self.ctx, sim, self.get_framebuffer_size(), paused=paused,
-                             output_dir=output_dir, stem=stem)
+                             output_dir=output_dir, stem=stem, overlap=overlap)
         self.imgui_input = PygletImguiInput(self)
         self._mouse_owner: str | None = None        # "gui" or "scene" while a button is down
         self._last = None
 
     # -- the frame ------------------------------------------------------------------------------
     def tick(self, real_dt: float) -> None:
-        """One whole frame: physics for ``real_dt`` real seconds, draw, flip."""
+        """One whole frame: physics for ``real_dt`` real seconds, draw, flip (with overlap the
+        physics runs beside the drawing and the flip; the frame ends when both are done)."""
         self.viewer.update(real_dt)
         self.switch_to()
         self.on_draw()
         self.flip()
+        if self.viewer is not None:
+            self.viewer.join_physics()
+
+    def _quiet(self) -> bool:
+        """Before an event touches the viewer: False when closed, else wait for the physics
+        worker (no event ever races it)."""
+        if self.viewer is None:
+            return False
+        self.viewer.join_physics()
+        return True
 
     def on_draw(self) -> None:
         if self.viewer is None:
@@ -101,12 +112,12 @@ class ViewerWindow(pyglet.window.Window):
 
     # -- mouse ----------------------------------------------------------------------------------
     def on_mouse_motion(self, x, y, dx, dy) -> None:
-        if self.viewer is None:       # closed
+        if self.viewer is None:       # closed (ImGui only: no need to wait for the physics)
             return
         self.imgui_input.mouse_move(x, y)
 
     def on_mouse_press(self, x, y, button, modifiers) -> None:
-        if self.viewer is None:       # closed
+        if not self._quiet():         # closed
             return
         self.imgui_input.mouse_button(x, y, button, True)
         if imgui.get_io().want_capture_mouse:
@@ -119,7 +130,7 @@ class ViewerWindow(pyglet.window.Window):
                                 ctrl=bool(modifiers & key.MOD_CTRL))
 
     def on_mouse_drag(self, x, y, dx, dy, buttons, modifiers) -> None:
-        if self.viewer is None:       # closed
+        if not self._quiet():         # closed
             return
         self.imgui_input.mouse_move(x, y)
         if self._mouse_owner == "scene":
@@ -128,7 +139,7 @@ class ViewerWindow(pyglet.window.Window):
             self.viewer.mouse.drag(px, py, dx * scale, -dy * scale)
 
     def on_mouse_release(self, x, y, button, modifiers) -> None:
-        if self.viewer is None:       # closed
+        if not self._quiet():         # closed
             return
         self.imgui_input.mouse_button(x, y, button, False)
         owner, self._mouse_owner = self._mouse_owner, None
@@ -137,7 +148,7 @@ class ViewerWindow(pyglet.window.Window):
                                       _BUTTONS.get(button, "left"))
 
     def on_mouse_scroll(self, x, y, scroll_x, scroll_y) -> None:
-        if self.viewer is None:       # closed
+        if not self._quiet():         # closed
             return
         self.imgui_input.scroll(scroll_x, scroll_y)
         if not imgui.get_io().want_capture_mouse:
@@ -145,7 +156,7 @@ class ViewerWindow(pyglet.window.Window):
 
     # -- keys -----------------------------------------------------------------------------------
     def on_key_press(self, symbol, modifiers):
-        if self.viewer is None:
+        if not self._quiet():
             return pyglet.event.EVENT_HANDLED
         self.imgui_input.key_event(symbol, True)
         if imgui.get_io().want_capture_keyboard and symbol != key.ESCAPE:
@@ -158,17 +169,17 @@ class ViewerWindow(pyglet.window.Window):
         return pyglet.event.EVENT_HANDLED     # Escape must not close behind our back
 
     def on_key_release(self, symbol, modifiers) -> None:
-        if self.viewer is None:       # closed
+        if not self._quiet():         # closed
             return
         self.imgui_input.key_event(symbol, False)
         self.viewer.sim.keys_down.discard(key_name(key.symbol_string(symbol)))
 
     def on_deactivate(self) -> None:
-        if self.viewer is not None:           # releases happen elsewhere: forget held keys
+        if self._quiet():                     # releases happen elsewhere: forget held keys
             self.viewer.sim.keys_down.clear()
 
     def on_text(self, text) -> None:
-        if self.viewer is None:       # closed
+        if self.viewer is None:       # closed (ImGui only: no need to wait for the physics)
             return
         self.imgui_input.text(text)
 
