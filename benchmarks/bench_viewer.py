@@ -10,6 +10,13 @@ simulated seconds so the pile is at rest (the steady state a user watches). Repo
 frames/s with the panel shown and hidden, the panel's cost per frame (ImGui new_frame to the
 end of its draw), physics ms per step, and the physics share of the frame. Pure rendering
 (paused) frames/s is also shown.
+
+Then overlap (issue 9): the same window with physics stepped in line and in the worker thread
+beside the drawing, in alternating blocks of frames (the pile keeps pouring, so alternating
+keeps the two comparable), panel shown. Per frame (medians): physics ms (the frame's steps,
+in the worker with overlap), drawing ms (main thread: panel, capture, render, blit, flip),
+frame ms (events to the end of both), frames/s, and the ratio fps / (1000 / max(physics,
+drawing)): 1 when a frame takes only as long as the longer of the two.
 """
 
 from __future__ import annotations
@@ -71,22 +78,53 @@ def measure(window, frames: int) -> dict:
     for _ in range(frames):
         window.dispatch_events()
         now = time.perf_counter()
-        t_update = time.perf_counter()
-        steps = v.update(now - last)
-        physics = time.perf_counter() - t_update
+        v.update(now - last)
         last = now
         window.switch_to()
         window.on_draw()
         window.flip()
+        v.join_physics()                      # the frame's steps (in line, or beside the draw)
         frame = time.perf_counter() - now
         fps.append(1.0 / frame)
         gui.append(v.stats.gui_ms)
-        share.append(physics / frame)
-        if steps:
-            step.append(1e3 * physics / steps)
+        share.append(v.physics_seconds / frame)
+        if v.physics_steps:
+            step.append(1e3 * v.physics_seconds / v.physics_steps)
     med = statistics.median
     return {"fps": med(fps), "gui_ms": med(gui), "share": med(share),
             "step_ms": med(step) if step else float("nan")}
+
+
+def measure_overlap(window, frames: int, block: int = 15) -> dict:
+    """Frames in alternating blocks with overlap off and on; per mode the medians of physics,
+    drawing and frame ms."""
+    v = window.viewer
+    got = {False: ([], [], []), True: ([], [], [])}
+    last = time.perf_counter()
+    for i in range(2 * frames):
+        overlap = (i // block) % 2 == 1
+        v.overlap = overlap
+        t0 = time.perf_counter()
+        window.dispatch_events()
+        v.update(t0 - last)
+        last = t0
+        t1 = time.perf_counter()
+        window.switch_to()
+        window.on_draw()
+        window.flip()
+        t2 = time.perf_counter()
+        v.join_physics()
+        t3 = time.perf_counter()
+        physics, drawing, frame = got[overlap]
+        physics.append(1e3 * v.physics_seconds)
+        drawing.append(1e3 * (t2 - t1))
+        frame.append(1e3 * (t3 - t0))
+    out = {}
+    for overlap, (physics, drawing, frame) in got.items():
+        p, d, f = (statistics.median(x) for x in (physics, drawing, frame))
+        out[overlap] = {"physics": p, "drawing": d, "frame": f, "fps": 1e3 / f,
+                        "ratio": (1e3 / f) / (1e3 / max(p, d))}
+    return out
 
 
 def main() -> None:
@@ -116,12 +154,21 @@ def main() -> None:
         hidden = measure(window, args.frames)
         window.viewer.act("pause")
         paused = measure(window, max(20, args.frames // 3))
+        window.viewer.act("pause")
+        window.viewer.act("panel")
+        overlap = measure_overlap(window, args.frames)
         window.close()
         print(f"{count:>6} spheres ({source}, {size[0]}x{size[1]}): "
               f"{shown['fps']:.1f} frames/s with the panel, {hidden['fps']:.1f} without, "
               f"{paused['fps']:.1f} paused (render only); panel {shown['gui_ms']:.2f} ms/frame; "
               f"physics {shown['step_ms']:.2f} ms/step, {100 * shown['share']:.0f}% of the "
               f"frame ({sim.scene.world.contacts.count} contacts; settling took {settle_s:.1f} s)")
+        for on in (False, True):
+            m = overlap[on]
+            print(f"{count:>6} spheres, overlap {'on ' if on else 'off'}: physics "
+                  f"{m['physics']:.1f} ms, drawing {m['drawing']:.1f} ms, frame "
+                  f"{m['frame']:.1f} ms per frame, {m['fps']:.1f} frames/s; fps / (1000 / "
+                  f"max(physics, drawing)) = {m['ratio']:.2f}")
 
 
 if __name__ == "__main__":

@@ -69,8 +69,9 @@ class Viewer:
         self._running: Future | None = None
         self._due: tuple[float, int, float] | None = None
         self._running_due = self._due
-        #: Seconds the last joined frame's steps took (in the worker with overlap).
-        self.physics_seconds = 0.0
+        #: Seconds the last joined frame's steps took (in the worker with overlap), and how
+        #: many steps they were.
+        self.physics_seconds, self.physics_steps = 0.0, 0
         #: Main-thread seconds the last frame spent drawing (capture, render, blit, panel).
         self.draw_seconds = 0.0
         self.clock = PlaybackClock(paused=paused)
@@ -162,7 +163,7 @@ class Viewer:
 
     def _finish(self, seconds: float, single: int, real_dt: float, steps: int,
                 physics: float) -> None:
-        self.physics_seconds = physics
+        self.physics_seconds, self.physics_steps = physics, steps
         self.stats.frame(real_dt, steps * self.sim.dt, steps, physics)
 
     def _start_physics(self) -> None:
