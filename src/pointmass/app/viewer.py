@@ -30,6 +30,7 @@ from imgui_bundle import imgui, implot
 
 from ..probes import Probe
 from ..render import OrbitCamera, Renderer
+from . import glwait
 from .blit import Blitter
 from .capture import ViewRecorder, save_png, timestamped
 from .clock import PlaybackClock
@@ -221,6 +222,8 @@ class Viewer:
                           extra_lines=self.mouse.extra_lines())
         self._start_physics()               # the simulation is not touched from here on
         r.draw(frame, self.camera)
+        if self._running is not None:
+            glwait.finish()                 # rasterize with the GIL free for the worker
         if self.recorder is not None:
             self.recorder.offer(r.read_rgb, frame.time)
             if self.recorder.error is not None:
