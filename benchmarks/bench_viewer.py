@@ -8,8 +8,9 @@ built here: spheres dropped into a walled pit) runs in a ViewerWindow, frames dr
 with the real time between them (so the clock's caps act as in use), after ``--settle``
 simulated seconds so the pile is at rest (the steady state a user watches). Reported per count:
 frames/s with the panel shown and hidden, the panel's cost per frame (ImGui new_frame to the
-end of its draw), physics ms per step, and the physics share of the frame. Pure rendering
-(paused) frames/s is also shown.
+end of its draw), physics ms per step, and the physics share of the frame (with the
+viewer's default, overlap on, the physics runs beside the drawing, so the share nears 100% when
+physics is the longer of the two). Pure rendering (paused) frames/s is also shown.
 
 Then overlap (issue 9): the same window with physics stepped in line and in the worker thread
 beside the drawing, in alternating blocks of frames (the pile keeps pouring, so alternating
