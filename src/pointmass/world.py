@@ -75,7 +75,10 @@ def _integrate(pos, vel, force, acc, inv_mass, damping, g, dt, out):
     """Integrate particles ``out[0]`` to ``out[1]`` (a chunk); stores into ``out[2]`` the first
     that is not finite (or -1) and into ``out[3]`` their kinetic energy after the step.
 
-    The kinetic energy is summed here because this pass reads every velocity anyway: a world
+    Each particle's force accumulator is cleared as it is read, as Cyclone's integrate ends with
+    clearAccumulator: no separate pass clears it, and a force added to ``particles.force``
+    before a step acts in it (as ``addForce`` does in the book). The kinetic energy is summed
+    here because this pass reads every velocity anyway: a world
     without contacts needs no second pass for ``StepStats.kinetic_energy`` (it cost as much as
     the integration itself for free particles). The stores are written out here: an inlined
     helper that stores into the arrays made numba's serial loop 3× slower (measured 49
@@ -96,6 +99,9 @@ def _integrate(pos, vel, force, acc, inv_mass, damping, g, dt, out):
         acc[i, 0] = ax
         acc[i, 1] = ay
         acc[i, 2] = az
+        force[i, 0] = 0.0  # the accumulator is consumed (Cyclone's clearAccumulator)
+        force[i, 1] = 0.0
+        force[i, 2] = 0.0
         if w > 0.0:
             energy += (vx * vx + vy * vy + vz * vz) / w
         if bad < 0 and not math.isfinite(px + py + pz + vx + vy + vz):
@@ -343,14 +349,16 @@ class World:
     def _substep(self, dt: float) -> SolveStats:
         p = self.particles
 
-        # Clear the force accumulators: forces are rebuilt from scratch every step.
-        p.force[:] = 0.0
-
-        # Let every force generator add its forces.
-        for generator in self.forces:
-            generator.apply(p, dt)
-        if self._jump_check:  # user forces: refuse a step that would throw a particle
-            jump_check(self.forces, p, self._gravity, dt)
+        # Let every force generator add its forces to the accumulators (which hold whatever
+        # the user added since the last step; the integration reads and clears them).
+        try:
+            for generator in self.forces:
+                generator.apply(p, dt)
+            if self._jump_check:  # user forces: refuse a step that would throw a particle
+                jump_check(self.forces, p, self._gravity, dt)
+        except BaseException:
+            p.force[:] = 0.0  # a refused step leaves no half-accumulated forces behind
+            raise
 
         # Integrate: v += a·dt, then p += v·dt (semi-implicit Euler, the cookbook's order).
         integrate = _integrate_parallel if p.count >= PARALLEL_MIN_PARTICLES else _integrate

@@ -72,7 +72,7 @@ def test_parallel_integration_is_bit_identical_for_any_thread_count():
 
     n = PARALLEL_MIN_PARTICLES + 12_345
     rng = np.random.default_rng(3)
-    start = rng.normal(size=(n, 3)) + (0.0, 50.0, 0.0), rng.normal(size=(n, 3))
+    start = rng.normal(size=(n, 3)) + np.array([0.0, 50.0, 0.0]), rng.normal(size=(n, 3))
     masses = rng.uniform(0.5, 2.0, n)
     results = []
     saved = numba.get_num_threads()
