@@ -13,6 +13,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..rigid.contacts import BodyContacts
+from . import body_direct
 from . import body_stages as st
 from .history import ImpulseHistory
 
@@ -70,12 +71,21 @@ def solve_velocities(bodies, contacts: BodyContacts, acceleration: np.ndarray,
     st.warm_start(c.a, c.b, c.normal, c.r_a, c.r_b, rows.t1, rows.t2, b.inv_mass,
                   b.inv_inertia_world, b.velocity, b.angular_velocity, rows.impulse, rows.jt1,
                   rows.jt2)
-    rows.velocity_passes = int(st.solve_velocities(
+    # A small set gets its exact normal impulses first (``body_direct.py``), then the passes
+    # settle friction. Not after unconverged passes, as the particles do: the friction those
+    # passes built on wrong normals stays (measured: a 10-box tower, μ 0.5, walked 1.1 cm in
+    # 10 s with the direct solve after 10 passes, 2e-10 m with it first).
+    if m <= body_direct.DIRECT_MAX_POINTS:
+        body_direct.solve_normals(b, c, rows)
+    rows.velocity_passes = _passes(b, c, rows, max_passes)
+    return rows
+
+
+def _passes(b, c, rows: BodyRows, passes: int) -> int:
+    return int(st.solve_velocities(
         c.a, c.b, c.normal, c.r_a, c.r_b, rows.t1, rows.t2, c.friction, rows.mass_n,
         rows.mass_t1, rows.mass_t2, rows.target, b.inv_mass, b.inv_inertia_world, b.velocity,
-        b.angular_velocity, rows.impulse, rows.jt1, rows.jt2, VELOCITY_TOLERANCE,
-        int(max_passes)))
-    return rows
+        b.angular_velocity, rows.impulse, rows.jt1, rows.jt2, VELOCITY_TOLERANCE, passes))
 
 
 def project_positions(bodies, rows: BodyRows, history: ImpulseHistory) -> None:
