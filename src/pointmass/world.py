@@ -9,9 +9,14 @@ import numpy as np
 from numba import njit, prange
 
 from . import _validate as check
+from .collide import Plane
 from .contacts import ContactBuffer, ContactGenerator
 from .forces import ForceGenerator
 from .particles import Particles
+from .rigid.bodies import Bodies, Body
+from .rigid.collide import generate as generate_body_contacts
+from .rigid.contacts import BodyContacts
+from .rigid.step import integrate_positions, integrate_velocities
 from .solver import ImpulseHistory, Solver, SolveStats
 from .stability import jump_check, needs_jump_check
 
@@ -29,6 +34,7 @@ class StepStats:
         mode: The solver mode ("sequential" or "worst-first").
         velocity_passes: Velocity passes of the solver (all substeps; see ``pointmass.solver``).
         position_passes: Projection passes (all substeps).
+        body_contacts: Rigid-body contact points in the last substep (speculative included).
     """
 
     contacts: int
@@ -38,6 +44,7 @@ class StepStats:
     mode: str
     velocity_passes: int = 0
     position_passes: int = 0
+    body_contacts: int = 0
 
 
 #: Below this many particles the integration runs on one core: starting threads costs more
@@ -164,6 +171,12 @@ class World:
                  resolver: str = "sequential", restitution_threshold: float = 0.0,
                  substeps: int = 1) -> None:
         self.particles = Particles()
+        #: Rigid bodies (``add_body``); they meet each other and every ``Plane``/``Ground``.
+        self.bodies = Bodies()
+        self.body_contacts = BodyContacts()
+        #: The warm start of rigid-body contact points (clear it with ``impulses``).
+        self.body_impulses = ImpulseHistory()
+        self._body_rows = None
         self.forces: list[ForceGenerator] = []
         self.contact_generators: list[ContactGenerator] = []
         self.contacts = ContactBuffer()
@@ -248,6 +261,27 @@ class World:
         return self.particles.add_many(positions, velocities, masses=masses, radii=radii,
                                        damping=damping)
 
+    def add_body(self, shape, position=(0.0, 0.0, 0.0), orientation=(1.0, 0.0, 0.0, 0.0), *,
+                 velocity=(0.0, 0.0, 0.0), angular_velocity=(0.0, 0.0, 0.0),
+                 density: float | None = None, mass: float | None = None, inertia=None,
+                 friction: float = 0.5, restitution: float = 0.0,
+                 linear_damping: float = 1.0, angular_damping: float = 1.0) -> Body:
+        """Add a rigid body of ``shape`` (``rigid.shapes.Sphere`` or ``Box``); returns its
+        ``Body`` handle. Mass from ``density`` [kg/m³] (1000, water, when neither is given) or
+        ``mass`` [kg], in (0, inf] (inf: static); orientation a quaternion (w, x, y, z);
+        ``friction`` μ ≥ 0 and ``restitution`` in [0, 1] of its surface (a contact uses
+        √(μa·μb) and the larger e; a plane counts as a surface). See ``Bodies.add``."""
+        if shape is None:
+            raise ValueError("shape must be a Sphere or a Box (pointmass.rigid.shapes); a body "
+                             "without a shape cannot collide: use world.bodies.add for one")
+        if density is None and mass is None:
+            density = 1000.0
+        index = self.bodies.add(position, orientation, velocity, angular_velocity, shape=shape,
+                                mass=mass, density=density, inertia=inertia,
+                                linear_damping=linear_damping, angular_damping=angular_damping,
+                                friction=friction, restitution=restitution)
+        return Body(self.bodies, index)
+
     def add(self, generator):
         """Add a force generator or a contact generator; returns it (to keep as a handle).
 
@@ -329,11 +363,18 @@ class World:
                 self.impulses.restore(saved[2])
             raise
         self.time += float(dt)
+        self.bodies.clear_accumulators()  # user forces and torques last one step
         pen = self.contacts.penetration
         # The integration summed the kinetic energy; only the solver changes velocities after
         # it, so a second pass is needed only when there were contacts to solve.
         energy = (self.particles.kinetic_energy() if self.contacts.count
                   else float(self._integrated[3]))
+        if self.bodies.count:
+            energy += self.bodies.kinetic_energy()
+        deepest = float(pen.max()) if pen.size and pen.max() > 0 else 0.0
+        rows = self._body_rows
+        if rows is not None:
+            deepest = max(deepest, rows.deepest)
         if not math.isfinite(energy):
             raise FloatingPointError(
                 f"the kinetic energy overflowed ({energy}) at t = {self.time:.6g} s: a velocity "
@@ -342,9 +383,9 @@ class World:
         for probe in self.probes:
             probe.record(self)
         return StepStats(contacts=self.contacts.count, iterations=iterations,
-                         max_penetration=float(pen.max()) if pen.size and pen.max() > 0 else 0.0,
-                         kinetic_energy=energy, mode=self.solver.mode,
-                         velocity_passes=velocity_passes, position_passes=position_passes)
+                         max_penetration=deepest, kinetic_energy=energy, mode=self.solver.mode,
+                         velocity_passes=velocity_passes, position_passes=position_passes,
+                         body_contacts=self.body_contacts.count)
 
     def _substep(self, dt: float) -> SolveStats:
         p = self.particles
@@ -380,7 +421,39 @@ class World:
             generator.generate(p, self.contacts)
 
         # Resolve them: impacts, resting contacts and links, then interpenetration.
-        return self.solver.solve(p, self.contacts, self.impulses, dt)
+        solved = self.solver.solve(p, self.contacts, self.impulses, dt)
+        if self.bodies.count:
+            rows = self._substep_bodies(dt)
+            solved = SolveStats(
+                contacts=solved.contacts, impact_passes=solved.impact_passes,
+                velocity_passes=solved.velocity_passes + rows.velocity_passes,
+                position_passes=solved.position_passes + rows.position_passes,
+                resolutions=solved.resolutions, cold_restart=solved.cold_restart)
+        return solved
+
+    def _substep_bodies(self, dt: float):
+        """The rigid bodies' substep: kick (gravity, forces, torques), contacts, the solver's
+        body stage on velocities, drift (x += v·dt, the free rotation), then its position
+        half. Bodies share no contact with particles yet, so this may follow their solve."""
+        b = self.bodies
+        w = b.inv_mass[:, None]
+        # what this substep's forces alone give each body, for the resting-contact trick
+        acc = np.where(w > 0.0, self._gravity + b.force * w, 0.0)
+        integrate_velocities(b.velocity, b.angular_velocity, b.force, b.torque, b.inv_mass,
+                             b.inv_inertia, b.inv_inertia_world, b.linear_damping,
+                             b.angular_damping, self._gravity, dt)
+        planes = [g for g in self.contact_generators if isinstance(g, Plane)]
+        generate_body_contacts(b, planes, dt, self.body_contacts)
+        rows = self.solver.solve_bodies(b, self.body_contacts, acc, self.body_impulses, dt)
+        bad = integrate_positions(b.position, b.orientation, b.velocity, b.angular_velocity,
+                                  b.inv_inertia, b.inv_inertia_world, dt)
+        if bad >= 0:
+            raise FloatingPointError(
+                f"body {bad} became non-finite at t = {self.time:.6g} s (position "
+                f"{b.position[bad].tolist()}, velocity {b.velocity[bad].tolist()})")
+        self.solver.project_bodies(b, rows, self.body_impulses)
+        self._body_rows = rows
+        return rows
 
     # -- measurements ---------------------------------------------------------------------------
     def kinetic_energy(self) -> float:
