@@ -347,7 +347,8 @@ class World:
         # the world stays as it was and the user can go on with a smaller dt. With substeps,
         # the earlier substeps are undone from a copy.
         self._jump_check = needs_jump_check(self.forces)
-        saved = (self.particles.snapshot(), self.time, self.impulses.snapshot()) \
+        saved = (self.particles.snapshot(), self.time, self.impulses.snapshot(),
+                 self.bodies.snapshot(), self.body_impulses.snapshot()) \
             if self._substeps > 1 else None
         iterations = velocity_passes = position_passes = 0
         try:
@@ -361,6 +362,8 @@ class World:
                 self.particles.restore(saved[0])
                 self.time = saved[1]
                 self.impulses.restore(saved[2])
+                self.bodies.restore(saved[3])
+                self.body_impulses.restore(saved[4])
             raise
         self.time += float(dt)
         self.bodies.clear_accumulators()  # user forces and torques last one step

@@ -210,6 +210,20 @@ class Bodies:
         self._force[i] += f
         self._torque[i] += np.cross(r, f)
 
+    def snapshot(self) -> dict[str, np.ndarray]:
+        """Copies of every array, to restore with ``restore`` (a reset, an undone step)."""
+        names = (*_FIELDS_3, *_FIELDS_1, "orientation", "inv_inertia_world", "shape")
+        return {name: getattr(self, name).copy() for name in names}
+
+    def restore(self, snap: dict[str, np.ndarray]) -> None:
+        """Return to a ``snapshot`` (bodies added since are dropped)."""
+        n = len(snap["inv_mass"])
+        if n > self._capacity:
+            self._alloc(n)
+        self._count = n
+        for name, arr in snap.items():
+            getattr(self, "_" + name)[:n] = arr
+
     def clear_accumulators(self) -> None:
         """Zero every force and torque (the stepper does this after each step)."""
         self.force[:] = 0.0

@@ -65,3 +65,28 @@ def test_body_keys_are_distinct_and_never_particle_keys():
             body_plane_key(1, 2, 5), body_plane_key(1, 3, 5)}
     assert len(keys) == 5
     assert all(k >= 1 << 60 and k < 1 << 61 for k in keys)
+
+
+def test_a_bare_scene_reset_puts_bodies_back():
+    """Simulation(Scene).rebuild restores the bodies (added ones dropped) and their warm start:
+    the rerun is the bits of a fresh world's run."""
+    world = pm.World()
+    world.add(pm.Ground(friction=0.5))
+    box = world.add_body(Box((0.5, 0.5, 0.5)), (0.0, 2.0, 0.0), mass=1.0)
+    sim = pm.Simulation(pm.Scene(world))
+    sim.advance(1.0)
+    world.add_body(Sphere(0.2), (3.0, 1.0, 0.0))
+    assert box.position[1] < 1.0 and world.bodies.count == 2
+    sim.rebuild()
+    assert world.bodies.count == 1 and box.position[1] == 2.0 and sim.time == 0.0
+    sim.advance(1.0)
+    again = pm.Simulation(pm.Scene(_fresh_box_world()))
+    again.advance(1.0)
+    assert np.array_equal(box.position, again.world.bodies.position[0])
+
+
+def _fresh_box_world():
+    world = pm.World()
+    world.add(pm.Ground(friction=0.5))
+    world.add_body(Box((0.5, 0.5, 0.5)), (0.0, 2.0, 0.0), mass=1.0)
+    return world
