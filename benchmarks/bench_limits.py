@@ -6,7 +6,10 @@ scene's work (no World, no generators, no checks), timed in the same run.
 Prints body-steps/s (particles × steps / s) for pointmass's World and for the fused loop, and
 their ratio (1.0 = the core costs nothing over the bare loop). Median of several repeats; numba
 compilation excluded. Scenes: 100 000 free particles under gravity and drag; a 100 × 100 cloth
-(19 800 springs with damping, drag, two pinned corners).
+(19 800 springs with damping, drag, two pinned corners); the ball pit of bench_peers.py
+(10 000 spheres, 600 steps from the same start, against fused_pit.py's one-thread sequential
+impulses with 10 velocity and 4 position passes; the mean speed after the run shows what each
+buys).
 """
 
 from __future__ import annotations
@@ -28,20 +31,23 @@ from bench_physics import DT, cloth, free_particles
 @njit(cache=True, parallel=True)
 def fused_free(pos, vel, inv_mass, g, k1, k2, dt, steps):
     """Gravity (as an acceleration), the cookbook's drag, semi-implicit Euler: one loop, on all
-    cores as pointmass runs it at this size."""
+    cores as pointmass runs it at this size, split into the same chunks of 8192 particles."""
+    n = pos.shape[0]
+    chunk = 8192
     for _ in range(steps):
-        for i in prange(pos.shape[0]):
-            vx, vy, vz = vel[i, 0], vel[i, 1], vel[i, 2]
-            speed = math.sqrt(vx * vx + vy * vy + vz * vz)
-            w = inv_mass[i]
-            drag = -(k1 * speed + k2 * speed * speed) / speed * w if speed > 0.0 else 0.0
-            vx += (g[0] + drag * vx) * dt
-            vy += (g[1] + drag * vy) * dt
-            vz += (g[2] + drag * vz) * dt
-            vel[i, 0], vel[i, 1], vel[i, 2] = vx, vy, vz
-            pos[i, 0] += vx * dt
-            pos[i, 1] += vy * dt
-            pos[i, 2] += vz * dt
+        for c in prange((n + chunk - 1) // chunk):
+            for i in range(c * chunk, min(n, (c + 1) * chunk)):
+                vx, vy, vz = vel[i, 0], vel[i, 1], vel[i, 2]
+                speed = math.sqrt(vx * vx + vy * vy + vz * vz)
+                w = inv_mass[i]
+                drag = -(k1 * speed + k2 * speed * speed) / speed * w if speed > 0.0 else 0.0
+                vx += (g[0] + drag * vx) * dt
+                vy += (g[1] + drag * vy) * dt
+                vz += (g[2] + drag * vz) * dt
+                vel[i, 0], vel[i, 1], vel[i, 2] = vx, vy, vz
+                pos[i, 0] += vx * dt
+                pos[i, 1] += vy * dt
+                pos[i, 2] += vz * dt
 
 
 @njit(cache=True)
@@ -125,6 +131,22 @@ def bench_cloth(side: int, steps: int, repeats: int) -> tuple[float, float]:
     return _median_rate(ours, n, steps, repeats), _median_rate(limit, n, steps, repeats)
 
 
+def bench_pit(n: int, repeats: int) -> tuple[float, float, float, float]:
+    """(pointmass, fused) body-steps/s over the pit's 600 steps, and their mean speeds after."""
+    import bench_peers
+
+    ours, fused = [], []
+    for _ in range(repeats):
+        seconds, _, vel = bench_peers.run_pointmass(n)
+        ours.append((n * bench_peers.STEPS / seconds, np.linalg.norm(vel, axis=1).mean()))
+        seconds, _, vel = bench_peers.run_fused(n)
+        fused.append((n * bench_peers.STEPS / seconds, np.linalg.norm(vel, axis=1).mean()))
+    (rate, speed), (limit, limit_speed) = (
+        (statistics.median(r for r, _ in runs), statistics.median(v for _, v in runs))
+        for runs in (ours, fused))
+    return rate, limit, speed, limit_speed
+
+
 def bench_tiny(steps: int, repeats: int) -> float:
     """Steps per second of a 1-particle world (a cookbook user's Python loop)."""
     import pointmass as pm
@@ -150,6 +172,14 @@ def main() -> None:
             ("free particles, N = 100 000", bench_free(100_000, steps, repeats)),
             ("cloth 100 × 100 (19 800 springs)", bench_cloth(100, steps, repeats))):
         print(f"{name:34s} {ours:12.3g} {limit:12.3g} {ours / limit:7.2f}")
+    import bench_peers
+
+    bench_peers.run_pointmass(100)  # compile outside the timing
+    n = 1000 if args.quick else 10_000
+    ours, limit, speed, limit_speed = bench_pit(n, 1 if args.quick else 3)
+    name = f"ball pit N = {n}, 600 steps"
+    print(f"{name:34s} {ours:12.3g} {limit:12.3g} {ours / limit:7.2f}   mean |v| after: "
+          f"{speed:.3f} m/s (fused loop {limit_speed:.3f})")
     tiny = bench_tiny(20_000 if not args.quick else 5_000, repeats)
     print(f"{'1-particle world, steps/s':34s} {tiny:12.3g}")
 

@@ -193,8 +193,27 @@ def measure(pos: np.ndarray, vel: np.ndarray, side: float, two_d: bool = False) 
             "touching": int((pen > -1e-3).sum()), "escapes": int((~inside).sum())}
 
 
+def run_fused(n: int):
+    """The in-run limit (fused_pit.py): one thread, 10 velocity + 4 position passes, no warm
+    start — a bare sequential-impulse loop, fast but never at rest."""
+    import sys
+    from pathlib import Path
+
+    sys.path.insert(0, str(Path(__file__).parent))
+    from fused_pit import fused_pit
+
+    pos, side = layout(n)
+    vel = np.zeros_like(pos)
+    g = np.array([0.0, -9.81, 0.0])
+    fused_pit(pos[:8].copy(), vel[:8].copy(), R, side / 2, 100.0, E, g, DT, 1, 10, 4)  # compile
+    start = time.perf_counter()
+    fused_pit(pos, vel, R, side / 2, 100.0, E, g, DT, STEPS, 10, 4)
+    return time.perf_counter() - start, pos, vel
+
+
 ENGINES = {
     "pointmass": run_pointmass,
+    "fused SI loop (1 thread)": run_fused,
     "PyBullet, 10 iterations": lambda n: run_pybullet(n, 10),
     "PyBullet, 50 iterations": lambda n: run_pybullet(n, 50),
     "MuJoCo CG (condim 1)": run_mujoco,

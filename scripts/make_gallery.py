@@ -30,11 +30,11 @@ def make_thumbnail(name: str) -> Path:
     if name in ANIMATED:
         path = OUT / f"{name}.gif"
         cmd = [*CLI, "record", name, "-o", str(path), "--seconds", str(ANIMATED[name]),
-               "--fps", "10", "--size", "320x180"]
+               "--fps", "10", "--size", "320x180", "--overwrite"]
     else:
         path = OUT / f"{name}.png"
         cmd = [*CLI, "render", name, "-o", str(path), "--time", str(STILL_TIME.get(name, 2.0)),
-               "--size", "320x180"]
+               "--size", "320x180", "--overwrite"]
     subprocess.run(cmd, check=True, cwd=ROOT)
     return path
 

@@ -36,3 +36,18 @@ def test_import_render_loads_no_pyglet():
     stmt = ("import pointmass.render, pointmass.render.recording, pointmass.render.video, "
             "pointmass.render.snapshot, pointmass.render.notebook")
     assert _loaded_after(stmt, ["pyglet", "imgui_bundle"]) == []
+
+
+def test_importing_pointmass_makes_openmp_wait_passively_unless_told_otherwise():
+    """Spinning OpenMP threads made the parallel kernels 14× slower on a loaded machine; the
+    default is passive waiting, and a user's own OMP_WAIT_POLICY is kept."""
+    import os
+
+    code = "import os, pointmass; print(os.environ['OMP_WAIT_POLICY'])"
+    env = {k: v for k, v in os.environ.items() if k != "OMP_WAIT_POLICY"}
+    out = subprocess.run([sys.executable, "-c", code], env=env, capture_output=True, text=True,
+                         check=True)
+    assert out.stdout.strip() == "PASSIVE"
+    out = subprocess.run([sys.executable, "-c", code], env={**env, "OMP_WAIT_POLICY": "ACTIVE"},
+                         capture_output=True, text=True, check=True)
+    assert out.stdout.strip() == "ACTIVE"

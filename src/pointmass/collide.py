@@ -27,7 +27,7 @@ from numba import njit
 from . import _validate as check
 from .contacts import ContactBuffer, ContactGenerator, friction_value, restitution_value
 from .forces import _Selection
-from .keys import pair_key, plane_key_base
+from .keys import pair_key, plane_key_base, plane_serial
 from .particles import Particles
 
 #: Default contact margin, as a fraction of each particle's radius (see the module docstring).
@@ -103,6 +103,11 @@ class Plane(ContactGenerator):
         self, "_restitution", restitution_value(v)), doc="Coefficient of restitution [0, 1].")
     friction = property(lambda self: self._friction, lambda self, v: setattr(
         self, "_friction", friction_value(v)), doc="Coulomb friction coefficient μ ≥ 0.")
+
+    @property
+    def serial(self) -> int:
+        """This plane's number, unique in the process: rigid-body contact keys name it."""
+        return plane_serial(self._key_base)
 
     def validate(self, particles: Particles) -> None:
         self._sel.validate(particles)

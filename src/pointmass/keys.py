@@ -6,6 +6,8 @@ previous step (``solver/history.py``), so a key must name the same physical cont
 - a sphere pair i < j:             i·2³¹ + j                      (bits 61 and 62 clear)
 - a particle on a plane or wall:   bit 62 | plane serial·2³¹ | i
 - a link (cable, rod):             bit 61 | link-set serial·2³¹ | link index
+- a rigid-body point:              bit 60 | a·2³⁴ | b·2¹⁴ | feature id (< 2¹⁴), with b the
+  other body, or bit 59 set and b the plane's serial for a body on a plane (a, b < 2²⁰)
 
 Keys are non-negative int64; -1 means "no key" (no warm start), as custom generators report.
 """
@@ -20,6 +22,11 @@ NO_KEY = -1
 _PLANE_BIT = 1 << 62
 _LINK_BIT = 1 << 61
 _SERIAL_MASK = 0x3FFFFFFF
+_BODY_BIT = 1 << 60
+_BODY_PLANE_BIT = 1 << 59
+#: Bodies and plane serials a body key has room for (20 bits each), and feature ids (14 bits).
+BODY_KEY_LIMIT = 1 << 20
+FEATURE_LIMIT = 1 << 14
 _serials = itertools.count()
 
 
@@ -37,3 +44,21 @@ def plane_key_base() -> int:
 def link_key_base() -> int:
     """A fresh base for one set of links; OR the link's index into it."""
     return _LINK_BIT | ((next(_serials) & _SERIAL_MASK) << 31)
+
+
+@njit(cache=True, inline="always")
+def body_pair_key(a, b, feature):
+    """The key of contact point ``feature`` (< 2¹⁴) between bodies a and b (each < 2²⁰)."""
+    return _BODY_BIT | (a << 34) | (b << 14) | (feature & (FEATURE_LIMIT - 1))
+
+
+@njit(cache=True, inline="always")
+def body_plane_key(a, plane_serial, feature):
+    """The key of contact point ``feature`` between body a and the plane of this serial."""
+    return (_BODY_BIT | _BODY_PLANE_BIT | (a << 34)
+            | ((plane_serial & (BODY_KEY_LIMIT - 1)) << 14) | (feature & (FEATURE_LIMIT - 1)))
+
+
+def plane_serial(key_base: int) -> int:
+    """A plane's serial, from the key base ``plane_key_base`` gave it."""
+    return (key_base >> 31) & _SERIAL_MASK

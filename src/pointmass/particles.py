@@ -26,7 +26,8 @@ class Particles:
     Attributes (views of the first ``count`` rows):
         position: Positions [m], shape (N, 3), float64.
         velocity: Velocities [m/s], shape (N, 3).
-        force: Force accumulator [N], shape (N, 3); cleared at the start of every step.
+        force: Force accumulator [N], shape (N, 3); the integration reads and clears it, so a
+            force added before a step acts in it (in its first substep).
         acceleration: Acceleration used by the last integration [m/s²], shape (N, 3); the
             resolver's resting-contact test reads it.
         inv_mass: Inverse mass [1/kg], shape (N,); 0 means infinite mass (immovable).
@@ -257,7 +258,7 @@ class Particle:
 
     @property
     def force(self) -> np.ndarray:
-        """This step's accumulated force [N], shape (3,)."""
+        """The force accumulated for the next step [N], shape (3,) (cleared by each step)."""
         return self.particles.force[self.index]
 
     def add_force(self, force) -> None:

@@ -83,8 +83,8 @@ class Scene:
 
     Attributes:
         world: The physics world.
-        camera: Where the camera starts; by default it frames the particles as they are when
-            the scene is made (``CameraHint.framing``).
+        camera: Where the camera starts; by default it frames the particles and rigid bodies
+            as they are when the scene is made (``CameraHint.framing``).
         colors: Per-particle RGB in [0, 1], shape (N, 3), or None for the default palette. May be
             reassigned (or grown) as particles are added.
         hidden: Optional boolean mask (N,) of particles not to draw (dead fireworks, rounds).
@@ -127,8 +127,10 @@ class Scene:
 
     def __post_init__(self) -> None:
         if self.camera is None:
-            p = self.world.particles
-            self.camera = CameraHint.framing(p.position, p.radius)
+            p, b = self.world.particles, self.world.bodies
+            self.camera = CameraHint.framing(
+                np.vstack([p.position, b.position]),
+                np.concatenate([p.radius, np.linalg.norm(b.size, axis=1)]))
 
     @property
     def time(self) -> float:

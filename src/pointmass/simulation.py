@@ -211,11 +211,13 @@ class Simulation:
 
 
 def _world_state(world) -> tuple:
-    return world.particles.snapshot(), world.time
+    return world.particles.snapshot(), world.bodies.snapshot(), world.time
 
 
 def _restore_world_state(world, state: tuple) -> None:
-    particles, time = state
+    particles, bodies, time = state
     world.particles.restore(particles)
+    world.bodies.restore(bodies)
     world.time = time
     world.impulses.clear()
+    world.body_impulses.clear()

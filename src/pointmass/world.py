@@ -9,9 +9,14 @@ import numpy as np
 from numba import njit, prange
 
 from . import _validate as check
+from .collide import Plane
 from .contacts import ContactBuffer, ContactGenerator
 from .forces import ForceGenerator
 from .particles import Particles
+from .rigid.bodies import Bodies, Body
+from .rigid.collide import generate as generate_body_contacts
+from .rigid.contacts import BodyContacts
+from .rigid.step import integrate_positions, integrate_velocities
 from .solver import ImpulseHistory, Solver, SolveStats
 from .stability import jump_check, needs_jump_check
 
@@ -29,6 +34,7 @@ class StepStats:
         mode: The solver mode ("sequential" or "worst-first").
         velocity_passes: Velocity passes of the solver (all substeps; see ``pointmass.solver``).
         position_passes: Projection passes (all substeps).
+        body_contacts: Rigid-body contact points in the last substep (speculative included).
     """
 
     contacts: int
@@ -38,6 +44,7 @@ class StepStats:
     mode: str
     velocity_passes: int = 0
     position_passes: int = 0
+    body_contacts: int = 0
 
 
 #: Below this many particles the integration runs on one core: starting threads costs more
@@ -75,7 +82,10 @@ def _integrate(pos, vel, force, acc, inv_mass, damping, g, dt, out):
     """Integrate particles ``out[0]`` to ``out[1]`` (a chunk); stores into ``out[2]`` the first
     that is not finite (or -1) and into ``out[3]`` their kinetic energy after the step.
 
-    The kinetic energy is summed here because this pass reads every velocity anyway: a world
+    Each particle's force accumulator is cleared as it is read, as Cyclone's integrate ends with
+    clearAccumulator: no separate pass clears it, and a force added to ``particles.force``
+    before a step acts in it (as ``addForce`` does in the book). The kinetic energy is summed
+    here because this pass reads every velocity anyway: a world
     without contacts needs no second pass for ``StepStats.kinetic_energy`` (it cost as much as
     the integration itself for free particles). The stores are written out here: an inlined
     helper that stores into the arrays made numba's serial loop 3× slower (measured 49
@@ -96,6 +106,9 @@ def _integrate(pos, vel, force, acc, inv_mass, damping, g, dt, out):
         acc[i, 0] = ax
         acc[i, 1] = ay
         acc[i, 2] = az
+        force[i, 0] = 0.0  # the accumulator is consumed (Cyclone's clearAccumulator)
+        force[i, 1] = 0.0
+        force[i, 2] = 0.0
         if w > 0.0:
             energy += (vx * vx + vy * vy + vz * vz) / w
         if bad < 0 and not math.isfinite(px + py + pz + vx + vy + vz):
@@ -158,6 +171,12 @@ class World:
                  resolver: str = "sequential", restitution_threshold: float = 0.0,
                  substeps: int = 1) -> None:
         self.particles = Particles()
+        #: Rigid bodies (``add_body``); they meet each other and every ``Plane``/``Ground``.
+        self.bodies = Bodies()
+        self.body_contacts = BodyContacts()
+        #: The warm start of rigid-body contact points (clear it with ``impulses``).
+        self.body_impulses = ImpulseHistory()
+        self._body_rows = None
         self.forces: list[ForceGenerator] = []
         self.contact_generators: list[ContactGenerator] = []
         self.contacts = ContactBuffer()
@@ -242,6 +261,27 @@ class World:
         return self.particles.add_many(positions, velocities, masses=masses, radii=radii,
                                        damping=damping)
 
+    def add_body(self, shape, position=(0.0, 0.0, 0.0), orientation=(1.0, 0.0, 0.0, 0.0), *,
+                 velocity=(0.0, 0.0, 0.0), angular_velocity=(0.0, 0.0, 0.0),
+                 density: float | None = None, mass: float | None = None, inertia=None,
+                 friction: float = 0.5, restitution: float = 0.0,
+                 linear_damping: float = 1.0, angular_damping: float = 1.0) -> Body:
+        """Add a rigid body of ``shape`` (``rigid.shapes.Sphere`` or ``Box``); returns its
+        ``Body`` handle. Mass from ``density`` [kg/m³] (1000, water, when neither is given) or
+        ``mass`` [kg], in (0, inf] (inf: static); orientation a quaternion (w, x, y, z);
+        ``friction`` μ ≥ 0 and ``restitution`` in [0, 1] of its surface (a contact uses
+        √(μa·μb) and the larger e; a plane counts as a surface). See ``Bodies.add``."""
+        if shape is None:
+            raise ValueError("shape must be a Sphere or a Box (pointmass.rigid.shapes); a body "
+                             "without a shape cannot collide: use world.bodies.add for one")
+        if density is None and mass is None:
+            density = 1000.0
+        index = self.bodies.add(position, orientation, velocity, angular_velocity, shape=shape,
+                                mass=mass, density=density, inertia=inertia,
+                                linear_damping=linear_damping, angular_damping=angular_damping,
+                                friction=friction, restitution=restitution)
+        return Body(self.bodies, index)
+
     def add(self, generator):
         """Add a force generator or a contact generator; returns it (to keep as a handle).
 
@@ -307,7 +347,8 @@ class World:
         # the world stays as it was and the user can go on with a smaller dt. With substeps,
         # the earlier substeps are undone from a copy.
         self._jump_check = needs_jump_check(self.forces)
-        saved = (self.particles.snapshot(), self.time, self.impulses.snapshot()) \
+        saved = (self.particles.snapshot(), self.time, self.impulses.snapshot(),
+                 self.bodies.snapshot(), self.body_impulses.snapshot()) \
             if self._substeps > 1 else None
         iterations = velocity_passes = position_passes = 0
         try:
@@ -321,13 +362,22 @@ class World:
                 self.particles.restore(saved[0])
                 self.time = saved[1]
                 self.impulses.restore(saved[2])
+                self.bodies.restore(saved[3])
+                self.body_impulses.restore(saved[4])
             raise
         self.time += float(dt)
+        self.bodies.clear_accumulators()  # user forces and torques last one step
         pen = self.contacts.penetration
         # The integration summed the kinetic energy; only the solver changes velocities after
         # it, so a second pass is needed only when there were contacts to solve.
         energy = (self.particles.kinetic_energy() if self.contacts.count
                   else float(self._integrated[3]))
+        if self.bodies.count:
+            energy += self.bodies.kinetic_energy()
+        deepest = float(pen.max()) if pen.size and pen.max() > 0 else 0.0
+        rows = self._body_rows
+        if rows is not None:
+            deepest = max(deepest, rows.deepest)
         if not math.isfinite(energy):
             raise FloatingPointError(
                 f"the kinetic energy overflowed ({energy}) at t = {self.time:.6g} s: a velocity "
@@ -336,21 +386,23 @@ class World:
         for probe in self.probes:
             probe.record(self)
         return StepStats(contacts=self.contacts.count, iterations=iterations,
-                         max_penetration=float(pen.max()) if pen.size and pen.max() > 0 else 0.0,
-                         kinetic_energy=energy, mode=self.solver.mode,
-                         velocity_passes=velocity_passes, position_passes=position_passes)
+                         max_penetration=deepest, kinetic_energy=energy, mode=self.solver.mode,
+                         velocity_passes=velocity_passes, position_passes=position_passes,
+                         body_contacts=self.body_contacts.count)
 
     def _substep(self, dt: float) -> SolveStats:
         p = self.particles
 
-        # Clear the force accumulators: forces are rebuilt from scratch every step.
-        p.force[:] = 0.0
-
-        # Let every force generator add its forces.
-        for generator in self.forces:
-            generator.apply(p, dt)
-        if self._jump_check:  # user forces: refuse a step that would throw a particle
-            jump_check(self.forces, p, self._gravity, dt)
+        # Let every force generator add its forces to the accumulators (which hold whatever
+        # the user added since the last step; the integration reads and clears them).
+        try:
+            for generator in self.forces:
+                generator.apply(p, dt)
+            if self._jump_check:  # user forces: refuse a step that would throw a particle
+                jump_check(self.forces, p, self._gravity, dt)
+        except BaseException:
+            p.force[:] = 0.0  # a refused step leaves no half-accumulated forces behind
+            raise
 
         # Integrate: v += a·dt, then p += v·dt (semi-implicit Euler, the cookbook's order).
         integrate = _integrate_parallel if p.count >= PARALLEL_MIN_PARTICLES else _integrate
@@ -372,7 +424,39 @@ class World:
             generator.generate(p, self.contacts)
 
         # Resolve them: impacts, resting contacts and links, then interpenetration.
-        return self.solver.solve(p, self.contacts, self.impulses, dt)
+        solved = self.solver.solve(p, self.contacts, self.impulses, dt)
+        if self.bodies.count:
+            rows = self._substep_bodies(dt)
+            solved = SolveStats(
+                contacts=solved.contacts, impact_passes=solved.impact_passes,
+                velocity_passes=solved.velocity_passes + rows.velocity_passes,
+                position_passes=solved.position_passes + rows.position_passes,
+                resolutions=solved.resolutions, cold_restart=solved.cold_restart)
+        return solved
+
+    def _substep_bodies(self, dt: float):
+        """The rigid bodies' substep: kick (gravity, forces, torques), contacts, the solver's
+        body stage on velocities, drift (x += v·dt, the free rotation), then its position
+        half. Bodies share no contact with particles yet, so this may follow their solve."""
+        b = self.bodies
+        w = b.inv_mass[:, None]
+        # what this substep's forces alone give each body, for the resting-contact trick
+        acc = np.where(w > 0.0, self._gravity + b.force * w, 0.0)
+        integrate_velocities(b.velocity, b.angular_velocity, b.force, b.torque, b.inv_mass,
+                             b.inv_inertia, b.inv_inertia_world, b.linear_damping,
+                             b.angular_damping, self._gravity, dt)
+        planes = [g for g in self.contact_generators if isinstance(g, Plane)]
+        generate_body_contacts(b, planes, dt, self.body_contacts)
+        rows = self.solver.solve_bodies(b, self.body_contacts, acc, self.body_impulses, dt)
+        bad = integrate_positions(b.position, b.orientation, b.velocity, b.angular_velocity,
+                                  b.inv_inertia, b.inv_inertia_world, dt)
+        if bad >= 0:
+            raise FloatingPointError(
+                f"body {bad} became non-finite at t = {self.time:.6g} s (position "
+                f"{b.position[bad].tolist()}, velocity {b.velocity[bad].tolist()})")
+        self.solver.project_bodies(b, rows, self.body_impulses)
+        self._body_rows = rows
+        return rows
 
     # -- measurements ---------------------------------------------------------------------------
     def kinetic_energy(self) -> float:

@@ -20,9 +20,9 @@ def _fraction_in_view(sim: Simulation, camera: OrbitCamera) -> float:
     p = scene.world.particles
     shown = np.ones(p.count, bool) if scene.hidden is None else \
         ~np.asarray(scene.hidden, bool)[: p.count]
-    if not shown.any():
+    pos = np.vstack([p.position[shown], scene.world.bodies.position])  # rigid bodies too
+    if not len(pos):
         return 1.0
-    pos = p.position[shown]
     pts = camera.project(pos, VIEW)
     ahead = (pos - camera.eye) @ camera.forward > 0
     inside = ahead & (pts[:, 0] >= 0) & (pts[:, 0] <= VIEW[0]) & (pts[:, 1] >= 0) & \

@@ -123,3 +123,16 @@ def test_spring_pair_gravity_accelerates_both_equally():
     dv1 = free.particles.velocity[q1, 1] - 10.0
     dv2 = free.particles.velocity[q2, 1] - 0.0
     assert dv1 == pytest.approx(dv2, abs=1e-12) == pytest.approx(-9.81 * 30 * DT)
+
+
+def test_a_force_added_before_a_step_acts_in_it_and_is_then_cleared():
+    """As the book's addForce: the accumulator holds until the integration reads and clears it
+    (a hook's add_force before world.step is not thrown away)."""
+    world = pm.World(gravity=(0.0, 0.0, 0.0))
+    i = world.add_particle((0.0, 0.0, 0.0), mass=2.0)
+    world.particles[i].add_force((4.0, 0.0, 0.0))
+    world.step(0.5)
+    assert world.particles.velocity[i, 0] == pytest.approx(4.0 / 2.0 * 0.5)
+    assert not world.particles.force.any()
+    world.step(0.5)                            # nothing added: no force this time
+    assert world.particles.velocity[i, 0] == pytest.approx(1.0)

@@ -60,3 +60,31 @@ def test_snapshot_restore_replays_identically():
     for _ in range(60):
         world.step(DT)
     assert np.array_equal(world.particles.position, first)
+
+
+def test_parallel_integration_is_bit_identical_for_any_thread_count():
+    """Above PARALLEL_MIN_PARTICLES the integration runs on all cores, split into fixed chunks
+    (not per thread), so positions, velocities and the summed kinetic energy are the same
+    bits on one thread or two."""
+    import numba
+
+    from pointmass.world import PARALLEL_MIN_PARTICLES
+
+    n = PARALLEL_MIN_PARTICLES + 12_345
+    rng = np.random.default_rng(3)
+    start = rng.normal(size=(n, 3)) + np.array([0.0, 50.0, 0.0]), rng.normal(size=(n, 3))
+    masses = rng.uniform(0.5, 2.0, n)
+    results = []
+    saved = numba.get_num_threads()
+    try:
+        for threads in (1, saved):
+            numba.set_num_threads(threads)
+            world = pm.World()
+            world.add_particles(start[0], start[1], masses=masses)
+            world.add(pm.Drag(0.1, 0.01))
+            energies = [world.step(1 / 60).kinetic_energy for _ in range(20)]
+            results.append((world.particles.position.copy(), energies))
+    finally:
+        numba.set_num_threads(saved)
+    assert np.array_equal(results[0][0], results[1][0])
+    assert results[0][1] == results[1][1]

@@ -47,7 +47,7 @@ class Panel:
             # Thin, translucent slider handles: ImGui's default 12 px block sits on the
             # centred value text and hides it whenever the value is mid-range.
             imgui.push_style_var(imgui.StyleVar_.grab_min_size, 4.0)
-            imgui.push_style_color(imgui.Col_.slider_grab, imgui.ImVec4(0.45, 0.70, 1.0, 0.75))
+            imgui.push_style_color(imgui.Col_.slider_grab, imgui.ImVec4(0.45, 0.70, 1.0, 0.45))
             self._controls(host)
             if imgui.collapsing_header("Parameters", _OPEN):
                 self._parameters(host)

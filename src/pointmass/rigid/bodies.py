@@ -21,7 +21,7 @@ from .quaternion import world_inv_inertia
 from .shapes import NONE, Box, Sphere, mass_properties
 
 _FIELDS_3 = ("position", "velocity", "angular_velocity", "force", "torque", "inv_inertia", "size")
-_FIELDS_1 = ("inv_mass", "linear_damping", "angular_damping")
+_FIELDS_1 = ("inv_mass", "linear_damping", "angular_damping", "friction", "restitution")
 
 
 class Bodies:
@@ -40,6 +40,9 @@ class Bodies:
         inv_inertia_world: World inverse inertia [1/(kg m²)], shape (N, 3, 3); derived.
         linear_damping, angular_damping: Fraction of velocity kept per second, in [0, 1],
             shape (N,); 1 means none (the particles' convention).
+        friction: Coulomb coefficient μ ≥ 0 of the body's surface, shape (N,); a contact uses
+            √(μa·μb) (Box2D's and Jolt's rule: either surface being frictionless makes it so).
+        restitution: Coefficient of restitution in [0, 1], shape (N,); a contact uses the larger.
         shape: Shape kind per body (``shapes.NONE``, ``SPHERE``, ``BOX``), shape (N,), int64.
         size: Sphere radius in column 0, or box half-extents [m], shape (N, 3).
     """
@@ -85,6 +88,8 @@ class Bodies:
     inv_inertia_world = _view("inv_inertia_world", "World inverse inertia, (N, 3, 3).")
     linear_damping = _view("linear_damping", "Fraction of v kept per second, (N,).")
     angular_damping = _view("angular_damping", "Fraction of ω kept per second, (N,).")
+    friction = _view("friction", "Coulomb coefficient μ ≥ 0, (N,).")
+    restitution = _view("restitution", "Coefficient of restitution in [0, 1], (N,).")
     shape = _view("shape", "Shape kind, (N,).")
     size = _view("size", "Radius or half-extents [m], (N, 3).")
     del _view
@@ -94,7 +99,8 @@ class Bodies:
             velocity=(0.0, 0.0, 0.0), angular_velocity=(0.0, 0.0, 0.0), *,
             shape: Sphere | Box | None = None, mass: float | None = None,
             density: float | None = None, inertia=None, linear_damping: float = 1.0,
-            angular_damping: float = 1.0) -> int:
+            angular_damping: float = 1.0, friction: float = 0.5,
+            restitution: float = 0.0) -> int:
         """Add one body and return its index.
 
         Args:
@@ -108,6 +114,8 @@ class Bodies:
             inertia: Principal moments [kg m²] along the body axes, each in (0, inf]
                 (``inf`` locks that axis); overrides the shape's. Needed without a shape.
             linear_damping, angular_damping: Fraction of velocity kept per second, in [0, 1].
+            friction: Coulomb coefficient μ ≥ 0 of the surface (contacts combine √(μa·μb)).
+            restitution: In [0, 1] (contacts take the larger of the two).
         """
         pos = check.vec3(position, "position")
         quat = _unit_quaternion(orientation)
@@ -135,6 +143,8 @@ class Bodies:
         inv_i = inverse_inertia(inertia)
         lin = check.scalar(linear_damping, "linear_damping", low=0.0, high=1.0)
         angd = check.scalar(angular_damping, "angular_damping", low=0.0, high=1.0)
+        mu = check.scalar(friction, "friction", low=0.0)
+        rest = check.scalar(restitution, "restitution", low=0.0, high=1.0)
         if self._count == self._capacity:
             self._alloc(2 * self._capacity)
         i = self._count
@@ -150,6 +160,8 @@ class Bodies:
         self._inv_inertia_world[i] = world_inv_inertia(quat, inv_i)
         self._linear_damping[i] = lin
         self._angular_damping[i] = angd
+        self._friction[i] = mu
+        self._restitution[i] = rest
         self._shape[i] = kind
         self._size[i] = size
         return i
@@ -198,6 +210,20 @@ class Bodies:
         self._force[i] += f
         self._torque[i] += np.cross(r, f)
 
+    def snapshot(self) -> dict[str, np.ndarray]:
+        """Copies of every array, to restore with ``restore`` (a reset, an undone step)."""
+        names = (*_FIELDS_3, *_FIELDS_1, "orientation", "inv_inertia_world", "shape")
+        return {name: getattr(self, name).copy() for name in names}
+
+    def restore(self, snap: dict[str, np.ndarray]) -> None:
+        """Return to a ``snapshot`` (bodies added since are dropped)."""
+        n = len(snap["inv_mass"])
+        if n > self._capacity:
+            self._alloc(n)
+        self._count = n
+        for name, arr in snap.items():
+            getattr(self, "_" + name)[:n] = arr
+
     def clear_accumulators(self) -> None:
         """Zero every force and torque (the stepper does this after each step)."""
         self.force[:] = 0.0
@@ -205,15 +231,21 @@ class Bodies:
 
     # -- derived -------------------------------------------------------------------------------
     def kinetic_energy(self) -> float:
-        """Σ ½ m|v|² + ½ ω·Iω over bodies with finite mass / moments [J]."""
-        total = 0.0
-        for i in range(self._count):
-            if self.inv_mass[i] > 0:
-                total += 0.5 * float(self.velocity[i] @ self.velocity[i]) / self.inv_mass[i]
-            inv = self.inv_inertia[i]
-            if (inv > 0).all():
-                wb = world_rotation(self.orientation[i]).T @ self.angular_velocity[i]
-                total += 0.5 * float(np.sum(wb * wb / inv))
+        """Σ ½ m|v|² + ½ ω·Iω over bodies with finite mass / moments [J] (vectorised: the world
+        sums it every step)."""
+        inv_m = self.inv_mass
+        moving = inv_m > 0
+        v = self.velocity[moving]
+        total = 0.5 * float(np.sum(np.einsum("ij,ij->i", v, v) / inv_m[moving]))
+        inv = self.inv_inertia
+        spinning = (inv > 0).all(axis=1)
+        if spinning.any():
+            q = self.orientation[spinning]
+            w = self.angular_velocity[spinning]
+            u = -q[:, 1:]  # the conjugate turns world into body coordinates
+            t = 2.0 * np.cross(u, w)
+            wb = w + q[:, :1] * t + np.cross(u, t)
+            total += 0.5 * float(np.sum(wb * wb / inv[spinning]))
         return total
 
     def angular_momentum(self, index: int) -> np.ndarray:

@@ -35,7 +35,7 @@ import numpy as np
 
 from ..contacts import ContactBuffer
 from ..particles import Particles
-from . import direct, stages
+from . import body_solver, direct, stages
 from .history import ImpulseHistory
 from .kernels import Bodies, ContactSet
 
@@ -123,6 +123,21 @@ class Solver:
             stats = self._sequential(p, bod, con, contacts, history, dt)
         stages.current_depths(bod, con, contacts.penetration)
         return stats
+
+    def solve_bodies(self, bodies, contacts, acceleration: np.ndarray, history: ImpulseHistory,
+                     dt: float) -> body_solver.BodyRows:
+        """The body stage's velocity half (prepare, warm start, solve velocities) for rigid-body
+        contact points; the caller drifts the bodies, then calls ``project_bodies``. Runs after
+        the particle stages of the same substep (``body_solver.py``)."""
+        passes = body_solver.MAX_VELOCITY_PASSES if self.max_passes is None \
+            else max(int(self.max_passes), 1)
+        return body_solver.solve_velocities(bodies, contacts, acceleration, history, float(dt),
+                                            float(self.restitution_threshold), passes)
+
+    def project_bodies(self, bodies, rows: body_solver.BodyRows,
+                       history: ImpulseHistory) -> None:
+        """The body stage's position half: projection, world inertia, impulses kept."""
+        body_solver.project_positions(bodies, rows, history)
 
     def _sequential(self, p, bod, con, contacts, history, dt) -> SolveStats:
         threshold = float(self.restitution_threshold)

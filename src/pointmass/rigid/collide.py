@@ -1,0 +1,159 @@
+"""Contact generation for rigid bodies: broadphase pairs and planes through the narrow-phase
+kernels into ``BodyContacts``.
+
+Each pair's margin is ``margin`` plus how far its two bodies can travel this step (the
+broadphase's ``reach``), so a point that can close within the step is already a (speculative)
+row, which the solver lets close only by its gap: no tunnelling at moderate speeds, no
+contact that appears only once it is deep. Planes are the particles' ``Plane``/``Ground``
+(n·x = offset, the solid on the −n side); bodies meet every plane of the world.
+
+Materials: μ = √(μa·μb), e = max(ea, eb) (a plane counts as a surface with its own μ and e).
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from numba import njit
+
+from ..keys import BODY_KEY_LIMIT, body_pair_key, body_plane_key
+from .box_box import box_box
+from .broadphase import find_pairs
+from .contacts import BodyContacts
+from .manifold import MAX_POINTS
+from .narrow_box import box_plane
+from .narrow_sphere import sphere_box, sphere_plane, sphere_sphere
+from .shapes import BOX, SPHERE
+
+#: Gap [m] below which a pair reports speculative points, besides what the bodies can travel
+#: in the step (Box3D: 4 × 5 mm linear slop).
+SPECULATIVE_MARGIN = 0.02
+
+
+@njit(cache=True)
+def _emit(count, a, b, pa, pb, normal, points, depth, ids, n_points, mu, e, plane,
+          out_a, out_b, out_n, out_ra, out_rb, out_d, out_mu, out_e, out_key):
+    """Append the ``n_points`` points of one manifold; b < 0 means the plane of serial
+    ``plane``. Returns the new count."""
+    for j in range(n_points):
+        out_a[count] = a
+        out_b[count] = b
+        for k in range(3):
+            out_n[count, k] = normal[k]
+            out_ra[count, k] = points[j, k] - pa[k]
+            out_rb[count, k] = points[j, k] - (pb[k] if b >= 0 else 0.0)
+        out_d[count] = depth[j]
+        out_mu[count] = mu
+        out_e[count] = e
+        if b >= 0:
+            out_key[count] = body_pair_key(a, b, ids[j])
+        else:
+            out_key[count] = body_plane_key(a, plane, ids[j])
+        count += 1
+    return count
+
+
+@njit(cache=True)
+def pair_contacts(pos, quat, shape, size, friction, restitution, first, second, reach, margin,
+                  out_a, out_b, out_n, out_ra, out_rb, out_d, out_mu, out_e, out_key):
+    """Narrow phase over the broadphase pairs. A sphere is always body A of a sphere–box pair
+    (the kernel's convention), so a pair keeps its orientation and its keys from step to
+    step. Returns the rows written."""
+    normal = np.zeros(3)
+    points = np.zeros((MAX_POINTS, 3))
+    depth = np.zeros(MAX_POINTS)
+    ids = np.zeros(MAX_POINTS, np.int64)
+    count = 0
+    for p in range(first.shape[0]):
+        i = first[p]
+        j = second[p]
+        m = margin + reach[i] + reach[j]
+        si = shape[i]
+        sj = shape[j]
+        if si == SPHERE and sj == SPHERE:
+            a, b = i, j
+            got = sphere_sphere(pos[a], size[a, 0], pos[b], size[b, 0], m, normal, points,
+                                depth, ids)
+        elif si == SPHERE and sj == BOX:
+            a, b = i, j
+            got = sphere_box(pos[a], size[a, 0], pos[b], quat[b], size[b], m, normal, points,
+                             depth, ids)
+        elif si == BOX and sj == SPHERE:
+            a, b = j, i
+            got = sphere_box(pos[a], size[a, 0], pos[b], quat[b], size[b], m, normal, points,
+                             depth, ids)
+        elif si == BOX and sj == BOX:
+            a, b = i, j
+            got = box_box(pos[a], quat[a], size[a], pos[b], quat[b], size[b], m, normal, points,
+                          depth, ids)
+        else:
+            continue
+        if got == 0:
+            continue
+        mu = math.sqrt(friction[a] * friction[b])
+        e = max(restitution[a], restitution[b])
+        count = _emit(count, a, b, pos[a], pos[b], normal, points, depth, ids, got, mu, e, 0,
+                      out_a, out_b, out_n, out_ra, out_rb, out_d, out_mu, out_e, out_key)
+    return count
+
+
+@njit(cache=True)
+def plane_contacts(pos, quat, shape, size, inv_mass, friction, restitution, reach, margin,
+                   plane_n, plane_d, plane_mu, plane_e, plane_serial, start,
+                   out_a, out_b, out_n, out_ra, out_rb, out_d, out_mu, out_e, out_key):
+    """Every movable body against every plane, written from row ``start``; returns the count."""
+    normal = np.zeros(3)
+    points = np.zeros((MAX_POINTS, 3))
+    depth = np.zeros(MAX_POINTS)
+    ids = np.zeros(MAX_POINTS, np.int64)
+    count = start
+    for i in range(pos.shape[0]):
+        if inv_mass[i] == 0.0:
+            continue
+        for s in range(plane_n.shape[0]):
+            m = margin + reach[i]
+            if shape[i] == SPHERE:
+                got = sphere_plane(pos[i], size[i, 0], plane_n[s], plane_d[s], m, normal,
+                                   points, depth, ids)
+            elif shape[i] == BOX:
+                got = box_plane(pos[i], quat[i], size[i], plane_n[s], plane_d[s], m, normal,
+                                points, depth, ids)
+            else:
+                continue
+            if got == 0:
+                continue
+            mu = math.sqrt(friction[i] * plane_mu[s])
+            e = max(restitution[i], plane_e[s])
+            count = _emit(count, i, -1, pos[i], pos[i], normal, points, depth, ids, got, mu, e,
+                          plane_serial[s], out_a, out_b, out_n, out_ra, out_rb, out_d, out_mu,
+                          out_e, out_key)
+    return count
+
+
+def generate(bodies, planes, dt: float, contacts: BodyContacts,
+             margin: float = SPECULATIVE_MARGIN) -> None:
+    """Fill ``contacts`` with every body–body and body–plane point of ``bodies`` (a
+    ``Bodies``) for a step of ``dt`` [s]; ``planes`` is a sequence of ``pointmass.Plane``
+    (its normal, offset, friction, restitution; the particle selection does not apply)."""
+    b = bodies
+    if b.count > BODY_KEY_LIMIT:
+        raise ValueError(f"at most {BODY_KEY_LIMIT} bodies collide (contact keys have 20 bits "
+                         f"for a body), got {b.count}")
+    first, second, reach = find_pairs(b, margin, dt)
+    n_planes = len(planes)
+    contacts.resize(MAX_POINTS * (first.shape[0] + b.count * n_planes))
+    c = contacts
+    out = (c.a, c.b, c.normal, c.r_a, c.r_b, c.depth, c.friction, c.restitution, c.key)
+    count = pair_contacts(b.position, b.orientation, b.shape, b.size, b.friction, b.restitution,
+                          first, second, reach, margin, *out)
+    if n_planes:
+        plane_n = np.array([p.normal for p in planes], dtype=np.float64).reshape(n_planes, 3)
+        plane_d = np.array([p.offset for p in planes], dtype=np.float64)
+        plane_mu = np.array([p.friction for p in planes], dtype=np.float64)
+        plane_e = np.array([p.restitution for p in planes], dtype=np.float64)
+        serial = np.array([p.serial for p in planes], dtype=np.int64)
+        count = plane_contacts(b.position, b.orientation, b.shape, b.size, b.inv_mass,
+                               b.friction, b.restitution, reach, margin, plane_n, plane_d,
+                               plane_mu, plane_e, serial, count, *out)
+    contacts.trim(count)

@@ -1,0 +1,53 @@
+"""The contact points of rigid bodies, struct-of-arrays, as the solver reads them.
+
+A row is one point of a manifold (``manifold.py``): body ``a`` is pushed along ``normal``, body
+``b`` (or the scenery when ``b`` is -1) along −normal, at lever arms ``r_a`` and ``r_b`` from
+their centres of mass to the point. A particle contact is the same row with both arms zero; the
+particles keep their own buffer (``pointmass.contacts``) because their generators write into it
+in place.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+
+class BodyContacts:
+    """The contact points of one substep (rebuilt every substep).
+
+    Attributes (the first ``count`` rows):
+        a, b: Bodies, shape (M,), int64; b = -1 for scenery (a plane).
+        normal: Unit normal from b to a, shape (M, 3).
+        r_a, r_b: Lever arms from each centre of mass to the point [m], shape (M, 3) (r_b is the
+            world point itself when b is scenery).
+        depth: Penetration [m] when found, shape (M,); < 0 a speculative gap.
+        friction: Coulomb μ of the point, shape (M,).
+        restitution: Coefficient of restitution, shape (M,).
+        key: Identity across steps (``pointmass.keys``) for warm starting, shape (M,), int64.
+    """
+
+    def __init__(self, capacity: int = 0) -> None:
+        self.count = 0
+        self.resize(capacity)
+
+    def resize(self, capacity: int) -> None:
+        """Room for ``capacity`` rows; the contents are dropped (``count`` = 0)."""
+        self.count = 0
+        self.a = np.zeros(capacity, np.int64)
+        self.b = np.full(capacity, -1, np.int64)
+        self.normal = np.zeros((capacity, 3))
+        self.r_a = np.zeros((capacity, 3))
+        self.r_b = np.zeros((capacity, 3))
+        self.depth = np.zeros(capacity)
+        self.friction = np.zeros(capacity)
+        self.restitution = np.zeros(capacity)
+        self.key = np.full(capacity, -1, np.int64)
+
+    def trim(self, count: int) -> None:
+        """Keep the first ``count`` rows as views (after a kernel wrote them)."""
+        self.count = count
+        for name in ("a", "b", "normal", "r_a", "r_b", "depth", "friction", "restitution", "key"):
+            setattr(self, name, getattr(self, name)[:count])
+
+    def __len__(self) -> int:
+        return self.count

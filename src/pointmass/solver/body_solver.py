@@ -1,0 +1,105 @@
+"""The body stage of ``Solver``: rigid-body contact points through ``body_stages``.
+
+It runs in the same substep and the same ``Solver`` as the particle stages, after them: the
+particles and the bodies keep separate stores and separate rows (a particle–body contact is not
+generated yet), so the two sets share no body and the order between them does not matter.
+The velocity half runs before the bodies drift, the position half after (``World._substep``).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from ..rigid.contacts import BodyContacts
+from . import body_direct
+from . import body_stages as st
+from .history import ImpulseHistory
+
+#: Velocity passes stop once no point's velocity changes by more than this [m/s] in a pass.
+VELOCITY_TOLERANCE = 1e-5
+#: Caps on the passes of each stage (they stop earlier once converged).
+MAX_VELOCITY_PASSES = 30
+MAX_POSITION_PASSES = 10
+
+
+@dataclass
+class BodyRows:
+    """One substep's solver rows for body contact points, and what the stages return."""
+
+    contacts: BodyContacts
+    t1: np.ndarray
+    t2: np.ndarray
+    mass_n: np.ndarray
+    mass_t1: np.ndarray
+    mass_t2: np.ndarray
+    target: np.ndarray
+    anchor_a: np.ndarray
+    anchor_b: np.ndarray
+    impulse: np.ndarray
+    jt1: np.ndarray
+    jt2: np.ndarray
+    velocity_passes: int = 0
+    position_passes: int = 0
+    deepest: float = 0.0
+
+
+def solve_velocities(bodies, contacts: BodyContacts, acceleration: np.ndarray,
+                     history: ImpulseHistory, dt: float, threshold: float,
+                     max_passes: int = MAX_VELOCITY_PASSES) -> BodyRows:
+    """Prepare, warm start and solve the velocities of ``contacts``; ``acceleration`` (N, 3) is
+    what this substep's forces gave each body [m/s²] (for the resting-contact trick)."""
+    m = contacts.count
+    c = contacts
+    rows = BodyRows(c, np.empty((m, 3)), np.empty((m, 3)), np.empty(m), np.empty(m),
+                    np.empty(m), np.empty(m), np.empty((m, 3)), np.empty((m, 3)), np.zeros(m),
+                    np.zeros(m), np.zeros(m))
+    if m == 0:
+        history.clear()
+        return rows
+    b = bodies
+    st.prepare(c.a, c.b, c.normal, c.r_a, c.r_b, c.depth, c.restitution, b.inv_mass,
+               b.inv_inertia_world, b.orientation, b.velocity, b.angular_velocity, acceleration,
+               dt, threshold, rows.t1, rows.t2, rows.mass_n, rows.mass_t1, rows.mass_t2,
+               rows.target, rows.anchor_a, rows.anchor_b)
+    friction = np.zeros((m, 3))
+    history.recall(c.key, rows.impulse, friction)
+    # the friction kept as a world vector, seen in this step's tangents
+    rows.jt1[:] = np.einsum("ij,ij->i", friction, rows.t1)
+    rows.jt2[:] = np.einsum("ij,ij->i", friction, rows.t2)
+    st.warm_start(c.a, c.b, c.normal, c.r_a, c.r_b, rows.t1, rows.t2, b.inv_mass,
+                  b.inv_inertia_world, b.velocity, b.angular_velocity, rows.impulse, rows.jt1,
+                  rows.jt2)
+    # A small set gets its exact normal impulses first (``body_direct.py``), then the passes
+    # settle friction. Not after unconverged passes, as the particles do: the friction those
+    # passes built on wrong normals stays (measured: a 10-box tower, μ 0.5, walked 1.1 cm in
+    # 10 s with the direct solve after 10 passes, 2e-10 m with it first).
+    if m <= body_direct.DIRECT_MAX_POINTS:
+        body_direct.solve_normals(b, c, rows)
+    rows.velocity_passes = _passes(b, c, rows, max_passes)
+    return rows
+
+
+def _passes(b, c, rows: BodyRows, passes: int) -> int:
+    return int(st.solve_velocities(
+        c.a, c.b, c.normal, c.r_a, c.r_b, rows.t1, rows.t2, c.friction, rows.mass_n,
+        rows.mass_t1, rows.mass_t2, rows.target, b.inv_mass, b.inv_inertia_world, b.velocity,
+        b.angular_velocity, rows.impulse, rows.jt1, rows.jt2, VELOCITY_TOLERANCE, passes))
+
+
+def project_positions(bodies, rows: BodyRows, history: ImpulseHistory) -> None:
+    """After the drift: remove penetration beyond the slop, refresh I⁻¹_world, keep the
+    impulses for the next step."""
+    c = rows.contacts
+    if c.count == 0:
+        return
+    b = bodies
+    passes, deepest = st.project_positions(c.a, c.b, c.normal, rows.anchor_a, rows.anchor_b,
+                                           c.depth, b.inv_mass, b.inv_inertia_world,
+                                           b.position, b.orientation, MAX_POSITION_PASSES)
+    rows.position_passes = int(passes)
+    rows.deepest = float(deepest)
+    st.world_inertia(b.orientation, b.inv_inertia, b.inv_inertia_world)
+    friction = rows.jt1[:, None] * rows.t1 + rows.jt2[:, None] * rows.t2
+    history.keep(c.key, rows.impulse, friction)
