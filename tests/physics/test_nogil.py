@@ -4,15 +4,17 @@ in a worker thread while the main thread draws (issue 9; benchmarks/bench_gil.py
 from __future__ import annotations
 
 import importlib
+import pkgutil
 
 import pytest
 from numba.core.registry import CPUDispatcher
 
-MODULES = ("pointmass.world", "pointmass.collide", "pointmass.forces", "pointmass.springs",
-           "pointmass.particles", "pointmass.stability", "pointmass.solver.stages",
-           "pointmass.solver.history", "pointmass.rigid.step", "pointmass.rigid.integrate",
-           "pointmass.rigid.box_box", "pointmass.rigid.narrow_sphere",
-           "pointmass.rigid.narrow_box", "pointmass.rigid.manifold")
+import pointmass
+
+#: Every module of the core (the window and the renderer have no kernels, and import GL).
+MODULES = tuple(m.name for m in pkgutil.walk_packages(pointmass.__path__, "pointmass.")
+                if not m.name.startswith(("pointmass.app", "pointmass.render",
+                                          "pointmass.cli", "pointmass.__main__")))
 
 
 def _kernels():
@@ -35,7 +37,7 @@ def test_a_step_in_a_thread_matches_one_in_line():
 
     import numpy as np
 
-    import pointmass as pm
+    pm = pointmass
 
     a, b = pm.Simulation("ball_pit", overrides=["count=300"]), \
         pm.Simulation("ball_pit", overrides=["count=300"])

@@ -23,7 +23,7 @@ from .scalar import qrot
 from .shapes import BOX, SPHERE
 
 
-@njit(cache=True)
+@njit(cache=True, nogil=True)
 def bounds(pos, quat, vel, ang, shape, size, margin, dt, low, high, reach):
     """AABBs (low, high (N, 3)) of every body with a shape, grown by ``margin`` [m] and by the
     distance its points can travel in ``dt`` [s]; ``reach`` (N,) gets that travel. Bodies without
@@ -62,7 +62,7 @@ def bounds(pos, quat, vel, ang, shape, size, margin, dt, low, high, reach):
         high[i, 2] = pos[i, 2] + ez + grow
 
 
-@njit(cache=True)
+@njit(cache=True, nogil=True)
 def sweep(low, high, order, inv_mass, out_a, out_b):
     """Overlapping pairs of AABBs, bodies taken in ``order`` (sorted by low x); a pair of two
     immovable bodies is skipped. Returns the pair count, or -(count needed) when ``out_a`` is

@@ -31,7 +31,7 @@ from .shapes import BOX, SPHERE
 SPECULATIVE_MARGIN = 0.02
 
 
-@njit(cache=True)
+@njit(cache=True, nogil=True)
 def _emit(count, a, b, pa, pb, normal, points, depth, ids, n_points, mu, e, plane,
           out_a, out_b, out_n, out_ra, out_rb, out_d, out_mu, out_e, out_key):
     """Append the ``n_points`` points of one manifold; b < 0 means the plane of serial
@@ -54,7 +54,7 @@ def _emit(count, a, b, pa, pb, normal, points, depth, ids, n_points, mu, e, plan
     return count
 
 
-@njit(cache=True)
+@njit(cache=True, nogil=True)
 def pair_contacts(pos, quat, shape, size, friction, restitution, first, second, reach, margin,
                   out_a, out_b, out_n, out_ra, out_rb, out_d, out_mu, out_e, out_key):
     """Narrow phase over the broadphase pairs. A sphere is always body A of a sphere–box pair
@@ -98,7 +98,7 @@ def pair_contacts(pos, quat, shape, size, friction, restitution, first, second, 
     return count
 
 
-@njit(cache=True)
+@njit(cache=True, nogil=True)
 def plane_contacts(pos, quat, shape, size, inv_mass, friction, restitution, reach, margin,
                    plane_n, plane_d, plane_mu, plane_e, plane_serial, start,
                    out_a, out_b, out_n, out_ra, out_rb, out_d, out_mu, out_e, out_key):

@@ -76,7 +76,7 @@ def _basis(nx, ny, nz):
     return ax, ay, az, ny * az - nz * ay, nz * ax - nx * az, nx * ay - ny * ax
 
 
-@njit(cache=True)
+@njit(cache=True, nogil=True)
 def prepare(ca, cb, n, ra, rb, depth, e, inv_mass, inv_i, quat, vel, ang, acc, dt, threshold,
             t1, t2, mass_n, mass_t1, mass_t2, target, la, lb):
     """Per point: tangents t1, t2; effective masses; target separating velocity [m/s]; the
@@ -124,7 +124,7 @@ def prepare(ca, cb, n, ra, rb, depth, e, inv_mass, inv_i, quat, vel, ang, acc, d
             target[c] = d / dt if d < 0.0 else 0.0
 
 
-@njit(cache=True)
+@njit(cache=True, nogil=True)
 def warm_start(ca, cb, n, ra, rb, t1, t2, inv_mass, inv_i, vel, ang, impulse, jt1, jt2):
     """Apply each point's remembered impulses (normal ``impulse``, friction ``jt1``, ``jt2``)."""
     for c in range(ca.shape[0]):
@@ -152,7 +152,7 @@ def warm_start(ca, cb, n, ra, rb, t1, t2, inv_mass, inv_i, vel, ang, impulse, jt
                 ang[b, k] -= inv_i[b, k, 0] * cx + inv_i[b, k, 1] * cy + inv_i[b, k, 2] * cz
 
 
-@njit(cache=True)
+@njit(cache=True, nogil=True)
 def solve_velocities(ca, cb, n, ra, rb, t1, t2, mu, mass_n, mass_t1, mass_t2, target,
                      inv_mass, inv_i, vel, ang, impulse, jt1, jt2, tolerance, max_passes):
     """Gauss–Seidel passes (module docstring, stage 3) until no point's velocity changes by
@@ -259,7 +259,7 @@ def _depth(ca, cb, n, la, lb, depth0, pos, quat, c):
     return d, rax, ray, raz, rbx, rby, rbz
 
 
-@njit(cache=True)
+@njit(cache=True, nogil=True)
 def project_positions(ca, cb, n, la, lb, depth0, inv_mass, inv_i, pos, quat, max_passes):
     """Nonlinear Gauss–Seidel on positions (module docstring, stage 5). Stops once no point is
     deeper than 1.5 × ``SLOP``; returns (passes, deepest point left [m])."""
@@ -314,14 +314,14 @@ def project_positions(ca, cb, n, la, lb, depth0, inv_mass, inv_i, pos, quat, max
     return passes, deepest
 
 
-@njit(cache=True)
+@njit(cache=True, nogil=True)
 def current_depths(ca, cb, n, la, lb, depth0, pos, quat, out):
     """Each point's depth now [m] (for statistics)."""
     for c in range(ca.shape[0]):
         out[c] = _depth(ca, cb, n, la, lb, depth0, pos, quat, c)[0]
 
 
-@njit(cache=True)
+@njit(cache=True, nogil=True)
 def world_inertia(quat, inv_inertia, out):
     """I⁻¹_world = R diag(I⁻¹) Rᵀ for every body, after the projection turned some."""
     for i in range(quat.shape[0]):
