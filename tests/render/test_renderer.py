@@ -102,3 +102,29 @@ def test_msaa_resolves_into_fbo(ctx):
     r.render(scene, _cam(scene))
     assert r.read_rgb()[24, 32, 0] > 120
     r.release()
+
+
+def test_rigid_bodies_are_drawn_where_the_camera_projects_them(renderer):
+    """A box body and a sphere body (with its spin markers) show in their colors at the pixels
+    their centres project to; turning the sphere moves its markers."""
+    from pointmass.render import bodies as body_visuals
+    from pointmass.rigid.quaternion import quat_from_axis_angle
+    from pointmass.rigid.shapes import Box, Sphere
+
+    world = pm.World(gravity=(0, 0, 0))
+    world.add_body(Box((0.4, 0.4, 0.4)), (-0.8, 1.0, 0.0))
+    ball = world.add_body(Sphere(0.4), (0.8, 1.0, 0.0))
+    scene = pm.Scene(world, show_ground=False,
+                     camera=pm.CameraHint(target=(0, 1, 0), distance=5, yaw=0, pitch=0))
+    camera = _cam(scene)
+    renderer.render(scene, camera)
+    rgb = renderer.read_rgb().astype(int)
+    (bx, by), (sx, sy) = camera.project(world.bodies.position, renderer.size).round().astype(int)
+    r, g, b = rgb[by, bx]
+    assert r > g > b and r > 100, rgb[by, bx]            # the warm box palette
+    r, g, b = rgb[sy + 4, sx]                            # beside the +z marker facing us
+    assert b > r and b > 100, rgb[sy + 4, sx]            # the blue sphere
+    _, markers = body_visuals.sphere_rows(world.bodies, 8)
+    ball.orientation = quat_from_axis_angle(np.array([0.0, 1.0, 0.0]), 1.0)
+    _, turned = body_visuals.sphere_rows(world.bodies, 8)
+    assert not np.allclose(markers[:, :3], turned[:, :3])

@@ -16,6 +16,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..scene import BoxVisual, PlaneVisual, Scene
+from . import bodies as body_visuals
 from . import gather, geometry
 from .picking import drawn_radii
 
@@ -28,8 +29,10 @@ class FrameState:
 
     Attributes:
         time: The world's clock when it was captured [s].
-        particles: How many of the sphere rows are particles (the anchor markers follow).
-        spheres: Sphere rows (``gather.SPHERE_FLOATS`` float32 each): particles then anchors.
+        particles: How many of the sphere rows cast shadows: particles and sphere bodies (spin
+            markers and anchor markers follow).
+        spheres: Sphere rows (``gather.SPHERE_FLOATS`` float32 each): particles, sphere bodies,
+            their spin markers, anchors.
         lines: Line rows (``gather.LINE_FLOATS``): links, plain trails, box edges.
         glow_trails: Line rows of glowing particles' trails (added onto the image).
         overlay: Line rows drawn over everything: contacts (when shown), caller lines.
@@ -64,6 +67,13 @@ class FrameState:
         anchors = gather.anchor_points(scene) if scene.show_links else np.zeros((0, 3))
         spheres = np.empty((n + len(anchors), gather.SPHERE_FLOATS), np.float32)
         gather.fill_spheres(scene, spheres, anchors)
+        # Rigid bodies: sphere bodies after the particles (they cast shadows too), their spin
+        # markers with the anchors (they do not); box bodies join the scene's boxes.
+        bodies = scene.world.bodies
+        balls, markers = body_visuals.sphere_rows(bodies, gather.SPHERE_FLOATS)
+        spheres = np.concatenate([spheres[:n], balls, markers, spheres[n:]])
+        boxes = [*scene.boxes, *body_visuals.box_visuals(bodies)]
+        casters = n + len(balls)
 
         have_trails = trails is not None and len(trails)
         parts: list[np.ndarray] = []
@@ -71,7 +81,7 @@ class FrameState:
             parts += gather.link_lines(scene, width_scale)
         if have_trails:
             parts += gather.trail_lines(scene, trails, scene.particle_colors(), width_scale)
-        for box in scene.boxes:
+        for box in boxes:
             start, end = geometry.box_edges(box.center, box.half_size, box.rotation)
             rgb = np.asarray(box.color) * (1.0 if box.wireframe else 0.45)
             width = (2.0 if box.wireframe else 1.5) * width_scale
@@ -82,9 +92,9 @@ class FrameState:
         if show_contacts:
             overlay += gather.contact_lines(scene, drawn_radii(scene), width_scale)
         overlay += gather.extra_line_rows(extra_lines, width_scale)
-        return cls(time=float(scene.world.time), particles=n, spheres=spheres,
+        return cls(time=float(scene.world.time), particles=casters, spheres=spheres,
                    lines=_joined(parts), glow_trails=_joined(glow), overlay=_joined(overlay),
-                   boxes=tuple(_copy_box(b) for b in scene.boxes),
+                   boxes=tuple(_copy_box(b) for b in boxes),
                    planes=tuple(_copy_plane(p) for p in scene.planes),
                    show_ground=bool(scene.show_ground),
                    ground_height=float(scene.ground_height), sky=scene.sky)

@@ -1,0 +1,65 @@
+"""What the renderer draws for rigid bodies (``world.bodies``): boxes as lit, outlined box
+meshes at their pose; spheres as impostors with three small markers on their surface along the
+body's axes, so a sphere's spin can be seen (a plain shaded ball looks the same at any angle).
+
+Pure numpy over the bodies' arrays, copied at capture time like everything in a FrameState.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from ..rigid.bodies import world_rotation
+from ..rigid.shapes import BOX, SPHERE
+from ..scene import BoxVisual
+
+#: Colors of movable bodies, by index (warm wood and paint); static ones are grey.
+BODY_PALETTE = np.array([(0.86, 0.56, 0.28), (0.80, 0.42, 0.30), (0.90, 0.70, 0.36),
+                         (0.62, 0.48, 0.34), (0.78, 0.60, 0.42)])
+STATIC_COLOR = (0.55, 0.57, 0.60)
+#: Sphere bodies stand out from the boxes they hit.
+SPHERE_COLOR = (0.30, 0.50, 0.85)
+#: The spin markers: radius as a fraction of the sphere's, and their colors (x, y, z axes).
+MARKER_SCALE = 0.16
+MARKER_COLORS = np.array([(0.95, 0.30, 0.20), (0.30, 0.85, 0.35), (0.95, 0.95, 0.95)])
+
+
+def body_colors(bodies) -> np.ndarray:
+    """(N, 3) colors: the palette for movable bodies, grey for static ones."""
+    n = bodies.count
+    out = BODY_PALETTE[np.arange(n) % len(BODY_PALETTE)].copy()
+    out[bodies.inv_mass[:n] == 0.0] = STATIC_COLOR
+    return out
+
+
+def box_visuals(bodies) -> list[BoxVisual]:
+    """A BoxVisual at each box body's pose."""
+    colors = body_colors(bodies)
+    out = []
+    for i in np.flatnonzero(bodies.shape == BOX):
+        out.append(BoxVisual(center=bodies.position[i].copy(), half_size=bodies.size[i].copy(),
+                             rotation=world_rotation(bodies.orientation[i]),
+                             color=tuple(float(c) for c in colors[i])))
+    return out
+
+
+def sphere_rows(bodies, floats: int) -> tuple[np.ndarray, np.ndarray]:
+    """(balls, markers): sphere rows (``floats`` wide: centre, radius, rgb, glow) for the
+    sphere bodies, and for the three axis markers half sunk into each one's surface."""
+    idx = np.flatnonzero(bodies.shape == SPHERE)
+    balls = np.zeros((len(idx), floats), np.float32)
+    markers = np.zeros((3 * len(idx), floats), np.float32)
+    if not len(idx):
+        return balls, markers
+    pos, r = bodies.position[idx], bodies.size[idx, 0]
+    balls[:, 0:3] = pos
+    balls[:, 3] = r
+    balls[:, 4:7] = np.where((bodies.inv_mass[idx] == 0.0)[:, None], STATIC_COLOR,
+                             SPHERE_COLOR)
+    for k, i in enumerate(idx):
+        axes = world_rotation(bodies.orientation[i])       # columns: the body's axes
+        rows = markers[3 * k: 3 * k + 3]
+        rows[:, 0:3] = pos[k] + r[k] * axes.T
+        rows[:, 3] = MARKER_SCALE * r[k]
+        rows[:, 4:7] = MARKER_COLORS
+    return balls, markers
