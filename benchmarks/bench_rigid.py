@@ -298,6 +298,36 @@ def row(name: str, steps: int, full: bool, rate: float, base: float | None, n: i
             f"{m['box pen']:.4f} / {m['floor pen']:.4f} | {m['escapes']} |")
 
 
+STAGES = ("_substep_bodies", "integrate_velocities", "generate", "solve_bodies",
+          "integrate_positions", "project_bodies", "kinetic_energy")
+
+
+def profile_pointmass(scene: Scene, steps: int) -> None:
+    """cProfile of ``world.step`` over the timed steps: the rigid stages' share, then the top
+    functions by own time."""
+    import cProfile
+    import pstats
+
+    world = build_pointmass(scene)
+    world.step(DT)
+    profiler = cProfile.Profile()
+    profiler.enable()
+    for _ in range(steps - 1):
+        world.step(DT)
+    profiler.disable()
+    stats = pstats.Stats(profiler)
+    total = max(ct for (_, _, fn), (_, _, _, ct, _) in stats.stats.items() if fn == "step")
+    print(f"\nprofile, pointmass on {scene.name} ({len(scene.position)} boxes, {steps - 1} "
+          f"steps): {1e3 * total / (steps - 1):.2f} ms/step under cProfile")
+    for (path, line, fn), (_, calls, _, ct, _) in sorted(stats.stats.items(),
+                                                        key=lambda kv: -kv[1][3]):
+        if fn in STAGES and "pointmass" in path:
+            where = path.split("pointmass/")[-1]
+            print(f"  {fn:22s} {where}:{line:<5d} {1e3 * ct / (steps - 1):7.2f} ms/step "
+                  f"{100 * ct / total:5.1f} %  ({calls} calls)")
+    stats.sort_stats("tottime").print_stats(12)
+
+
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--scenes", nargs="+", default=["tower", "pyramid", "pit"],
@@ -310,10 +340,17 @@ def main() -> None:
                         help="wall-clock cap [s] on one run's timed stepping")
     parser.add_argument("--quick", action="store_true",
                         help=f"120 steps instead of {STEPS}, and a 250-box pit")
+    parser.add_argument("--profile", action="store_true",
+                        help="instead of the tables: cProfile pointmass's world.step per scene")
     args = parser.parse_args()
     steps = 120 if args.quick else STEPS
     builders = {"tower": tower, "pyramid": pyramid,
                 "pit": (lambda: pit(250)) if args.quick else pit}
+    if args.profile:
+        warm_pointmass()
+        for scene_name in args.scenes:
+            profile_pointmass(builders[scene_name](), steps)
+        return
     if "pointmass" in args.engines:
         warm_pointmass()
     for scene_name in args.scenes:
