@@ -460,14 +460,17 @@ class World:
 
     # -- measurements ---------------------------------------------------------------------------
     def kinetic_energy(self) -> float:
-        """Total kinetic energy [J]."""
-        return self.particles.kinetic_energy()
+        """Total kinetic energy of particles and rigid bodies (translation and rotation) [J]."""
+        energy = self.particles.kinetic_energy()
+        return energy + self.bodies.kinetic_energy() if self.bodies.count else energy
 
     def potential_energy(self) -> float:
-        """Gravitational potential energy (world gravity, zero at y = 0) plus the energy stored
-        by force generators that report it (springs, gravity generators) [J]."""
-        p = self.particles
-        moving = p.inv_mass > 0
-        heights = p.position[moving] @ self._gravity
-        energy = float(-np.sum(heights / p.inv_mass[moving]))
-        return energy + sum(f.potential_energy(p) for f in self.forces)
+        """Gravitational potential energy of particles and rigid bodies (world gravity, zero at
+        y = 0) plus the energy stored by force generators that report it (springs, gravity
+        generators) [J]."""
+        energy = 0.0
+        for store in (self.particles, self.bodies):
+            moving = store.inv_mass > 0
+            heights = store.position[moving] @ self._gravity
+            energy -= float(np.sum(heights / store.inv_mass[moving]))
+        return energy + sum(f.potential_energy(self.particles) for f in self.forces)

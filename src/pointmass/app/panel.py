@@ -159,7 +159,8 @@ class Panel:
         s, scene = host.stats, host.sim.scene
         world = scene.world
         last = host.sim.last_stats
-        contacts = last.contacts if last is not None else 0
+        contacts = last.contacts + last.body_contacts if last is not None else 0
+        bodies = world.bodies.count
         rows = (
             ("sim time", f"{scene.time:.3f} s"),
             ("real-time factor", f"{s.realtime:.2f}x" + ("  (paused)" if host.clock.paused
@@ -167,7 +168,8 @@ class Panel:
             ("frames/s", f"{s.fps:.1f}"),
             ("physics per step", f"{s.step_ms:.2f} ms  (dt {1e3 * host.sim.dt:.2f} ms)"),
             ("panel per frame", f"{s.gui_ms:.2f} ms"),
-            ("particles", particle_count(scene)),
+            ("particles", particle_count(scene)
+             + (f"  (+ {bodies} rigid bodies)" if bodies else "")),
             ("contacts", f"{contacts}" + (f"  ({last.mode})" if last is not None else "")),
             ("kinetic energy", f"{world.kinetic_energy():.4g} J"),
             ("potential energy", f"{world.potential_energy():.4g} J"),
@@ -183,7 +185,8 @@ class Panel:
             return
         kinetic, potential = probe["kinetic"], probe["potential"]
         energies = {"kinetic": kinetic, "potential": potential, "total": kinetic + potential}
-        movable = bool((host.sim.world.particles.inv_mass > 0).any())
+        world = host.sim.world
+        movable = bool((world.particles.inv_mass > 0).any() or (world.bodies.inv_mass > 0).any())
         # A scene of only kinematic (infinite-mass) bodies has no energy: no flat-zero plot.
         if movable and implot.begin_plot("##energy", imgui.ImVec2(-1, 130)):
             _setup_axes("t [s]", "energy [J]", t, energies.values())
@@ -240,7 +243,9 @@ def plot_limits(values) -> tuple[float, float]:
     low = min(float(v.min()) for v in finite)
     high = max(float(v.max()) for v in finite)
     span = high - low
-    pad = PLOT_MARGIN * span if span > 1e-12 * max(1.0, abs(high)) else \
+    # Below a millionth of its size a change is rounding (a tower settling by 1e-11 m), not a
+    # curve worth magnifying: such a series gets a band around it, as a flat one does.
+    pad = PLOT_MARGIN * span if span > 1e-6 * max(1.0, abs(high)) else \
         max(0.5, 0.1 * abs(high))
     return low - pad, high + pad
 

@@ -90,3 +90,15 @@ def _fresh_box_world():
     world.add(pm.Ground(friction=0.5))
     world.add_body(Box((0.5, 0.5, 0.5)), (0.0, 2.0, 0.0), mass=1.0)
     return world
+
+
+def test_world_energies_count_rigid_bodies():
+    """World.kinetic_energy and potential_energy include bodies: ½mv² + ½ω·Iω and m·g·h."""
+    from pointmass.rigid.shapes import Box
+
+    world = pm.World(gravity=(0.0, -10.0, 0.0))
+    world.add_body(Box((0.5, 0.5, 0.5)), (0.0, 3.0, 0.0), mass=2.0, velocity=(3.0, 0.0, 0.0),
+                   angular_velocity=(0.0, 2.0, 0.0))
+    inertia = 2.0 * (0.5**2 + 0.5**2) / 3.0                     # m(b² + c²)/3, half-extents
+    assert world.kinetic_energy() == pytest.approx(0.5 * 2.0 * 9.0 + 0.5 * inertia * 4.0)
+    assert world.potential_energy() == pytest.approx(2.0 * 10.0 * 3.0)
