@@ -41,3 +41,27 @@ def test_hidden_particles_are_not_picked_and_behind_is_ignored():
 
 def test_empty_world():
     assert pick_particle(pm.Scene(pm.World()), (0, 0, 0), (0, 0, 1)) is None
+
+
+def test_pick_body_hits_the_nearest_box_or_sphere_at_its_surface():
+    """Ray against rigid bodies: a turned box by its faces, a sphere by its surface; the
+    nearer one wins; a miss is None."""
+    import math
+
+    import pytest
+
+    import pointmass as pm
+    from pointmass.render.picking import pick_body
+    from pointmass.rigid.quaternion import quat_from_axis_angle
+    from pointmass.rigid.shapes import Box, Sphere
+
+    world = pm.World()
+    turned = quat_from_axis_angle(np.array([0.0, 1.0, 0.0]), math.pi / 4)
+    world.add_body(Box((0.5, 0.5, 0.5)), (0.0, 1.0, 0.0), turned)
+    world.add_body(Sphere(0.5), (0.0, 1.0, -3.0))
+    index, point, _ = pick_body(world, (0.0, 1.0, 5.0), (0.0, 0.0, -1.0))
+    assert index == 0                                   # the box is in front of the sphere
+    assert point[2] == pytest.approx(0.5 * math.sqrt(2.0))   # its front edge, turned 45°
+    index, point, _ = pick_body(world, (0.0, 1.0, -10.0), (0.0, 0.0, 1.0))
+    assert index == 1 and point[2] == pytest.approx(-3.5)
+    assert pick_body(world, (5.0, 5.0, 5.0), (0.0, 1.0, 0.0)) is None

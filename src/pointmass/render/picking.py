@@ -42,3 +42,38 @@ def pick_particle(scene: Scene, origin, direction) -> int | None:
     t = np.where(hit & (t >= 0), t, np.inf)
     best = int(np.argmin(t))
     return best if np.isfinite(t[best]) else None
+
+
+def pick_body(world, origin, direction) -> tuple[int, np.ndarray, float] | None:
+    """The nearest rigid body the ray hits: (index, hit point [m], distance along the ray), or
+    None. Spheres by the ray–sphere test; boxes by the slab test in the box's own frame."""
+    from ..rigid.bodies import world_rotation
+    from ..rigid.shapes import BOX, SPHERE
+
+    b = world.bodies
+    o = np.asarray(origin, dtype=np.float64).reshape(3)
+    d = np.asarray(direction, dtype=np.float64).reshape(3)
+    d = d / np.linalg.norm(d)
+    best: tuple[int, np.ndarray, float] | None = None
+    for i in range(b.count):
+        t = None
+        if b.shape[i] == SPHERE:
+            oc = b.position[i] - o
+            along = oc @ d
+            disc = along * along - (oc @ oc - b.size[i, 0] ** 2)
+            if disc >= 0:
+                root = np.sqrt(disc)
+                t = along - root if along - root >= 0 else along + root
+        elif b.shape[i] == BOX:
+            r = world_rotation(b.orientation[i])
+            lo_, ld = r.T @ (o - b.position[i]), r.T @ d       # the ray in the box's frame
+            with np.errstate(divide="ignore", invalid="ignore"):
+                t1 = (-b.size[i] - lo_) / ld
+                t2 = (b.size[i] - lo_) / ld
+            near = np.nanmax(np.minimum(t1, t2))
+            far = np.nanmin(np.maximum(t1, t2))
+            if near <= far and far >= 0:
+                t = near if near >= 0 else far
+        if t is not None and t >= 0 and (best is None or t < best[2]):
+            best = (i, o + t * d, float(t))
+    return best
