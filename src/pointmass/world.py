@@ -197,6 +197,7 @@ class World:
         self.probes: list = []
         #: The particle count that every generator was last validated against.
         self._checked_count = 0
+        self._checked_bodies = 0  # the same for bodies and the body force generators
         #: The integration's range, first non-finite particle and kinetic energy (one array,
         #: reused, so a tiny world's step allocates nothing for it).
         self._integrated = np.zeros(4)
@@ -304,6 +305,7 @@ class World:
         elif isinstance(generator, BodyForceGenerator):
             generator.validate(self.bodies)
             self.body_forces.append(generator)
+            self._checked_bodies = max(self._checked_bodies, self.bodies.count)
             return generator
         else:
             raise TypeError(f"world.add takes a ForceGenerator, BodyForceGenerator or "
@@ -327,6 +329,17 @@ class World:
                         f"(the world has {count} now): {error}; remove it with world.remove() "
                         "or restore a snapshot that has its particles") from None
         self._checked_count = count
+        bodies = self.bodies.count
+        if bodies < self._checked_bodies:
+            for generator in self.body_forces:
+                try:
+                    generator.validate(self.bodies)
+                except (IndexError, ValueError) as error:
+                    raise IndexError(
+                        f"{type(generator).__name__} refers to a body that no longer exists "
+                        f"(the world has {bodies} now): {error}; remove it with world.remove() "
+                        "or restore a snapshot that has its bodies") from None
+        self._checked_bodies = bodies
 
     def add_probe(self, probe):
         """Sample ``probe`` (a ``pointmass.Probe``) after every step; returns it."""

@@ -194,6 +194,18 @@ def test_world_add_and_remove_body_generators():
         world.add(BodySpring(a, (0, 0, 0), 3, (0, 0, 0), 1.0, 0.0))
 
 
+def test_a_generator_on_a_body_dropped_by_restore_fails_naming_it():
+    world = pm.World()
+    a = world.add_body(Sphere(0.2))
+    snap = world.bodies.snapshot()
+    b = world.add_body(Sphere(0.2), (2, 0, 0))
+    world.add(BodySpring(a, (0, 0, 0), b, (0, 0, 0), 1.0, 1.0))
+    world.step(1 / 60)
+    world.bodies.restore(snap)
+    with pytest.raises(IndexError, match=r"BodySpring.*no longer exists"):
+        world.step(1 / 60)
+
+
 def test_spring_energy_counts_in_the_world():
     world = pm.World(gravity=(0.0, 0.0, 0.0))
     a = world.add_body(Sphere(0.1), (0, 0, 0), mass=1.0)
