@@ -16,6 +16,7 @@ from .particles import Particles
 from .rigid.bodies import Bodies, Body
 from .rigid.collide import generate as generate_body_contacts
 from .rigid.contacts import BodyContacts
+from .rigid.forces import BodyForceGenerator
 from .rigid.step import integrate_positions, integrate_velocities
 from .solver import ImpulseHistory, Solver, SolveStats
 from .stability import jump_check, needs_jump_check
@@ -178,6 +179,8 @@ class World:
         self.body_impulses = ImpulseHistory()
         self._body_rows = None
         self.forces: list[ForceGenerator] = []
+        #: Rigid-body force generators (``pointmass.rigid.forces``), applied before the kick.
+        self.body_forces: list[BodyForceGenerator] = []
         self.contact_generators: list[ContactGenerator] = []
         self.contacts = ContactBuffer()
         self.solver = Solver()
@@ -194,6 +197,7 @@ class World:
         self.probes: list = []
         #: The particle count that every generator was last validated against.
         self._checked_count = 0
+        self._checked_bodies = 0  # the same for bodies and the body force generators
         #: The integration's range, first non-finite particle and kinetic energy (one array,
         #: reused, so a tiny world's step allocates nothing for it).
         self._integrated = np.zeros(4)
@@ -283,11 +287,13 @@ class World:
         return Body(self.bodies, index)
 
     def add(self, generator):
-        """Add a force generator or a contact generator; returns it (to keep as a handle).
+        """Add a force generator, a rigid-body force generator (``pointmass.rigid.forces``)
+        or a contact generator; returns it (to keep as a handle).
 
-        Particle indices are checked here, against the particles that exist now.
+        Particle and body indices are checked here, against those that exist now.
         """
-        if any(generator is g for g in (*self.forces, *self.contact_generators)):
+        if any(generator is g for g in (*self.forces, *self.contact_generators,
+                                        *self.body_forces)):
             raise ValueError(f"{type(generator).__name__} is already in this world: adding it "
                              "again would apply it twice (add another instance for more)")
         if isinstance(generator, ForceGenerator):
@@ -296,8 +302,14 @@ class World:
         elif isinstance(generator, ContactGenerator):
             generator.validate(self.particles)
             self.contact_generators.append(generator)
+        elif isinstance(generator, BodyForceGenerator):
+            generator.validate(self.bodies)
+            self.body_forces.append(generator)
+            self._checked_bodies = max(self._checked_bodies, self.bodies.count)
+            return generator
         else:
-            raise TypeError(f"world.add takes a ForceGenerator or ContactGenerator, got "
+            raise TypeError(f"world.add takes a ForceGenerator, BodyForceGenerator or "
+                            f"ContactGenerator, got "
                             f"{type(generator).__name__}")
         self._checked_count = max(self._checked_count, self.particles.count)
         return generator
@@ -317,6 +329,17 @@ class World:
                         f"(the world has {count} now): {error}; remove it with world.remove() "
                         "or restore a snapshot that has its particles") from None
         self._checked_count = count
+        bodies = self.bodies.count
+        if bodies < self._checked_bodies:
+            for generator in self.body_forces:
+                try:
+                    generator.validate(self.bodies)
+                except (IndexError, ValueError) as error:
+                    raise IndexError(
+                        f"{type(generator).__name__} refers to a body that no longer exists "
+                        f"(the world has {bodies} now): {error}; remove it with world.remove() "
+                        "or restore a snapshot that has its bodies") from None
+        self._checked_bodies = bodies
 
     def add_probe(self, probe):
         """Sample ``probe`` (a ``pointmass.Probe``) after every step; returns it."""
@@ -327,7 +350,7 @@ class World:
 
     def remove(self, generator) -> None:
         """Remove a generator added with ``add``."""
-        for group in (self.forces, self.contact_generators):
+        for group in (self.forces, self.contact_generators, self.body_forces):
             if generator in group:
                 group.remove(generator)
                 return
@@ -439,12 +462,23 @@ class World:
         body stage on velocities, drift (x += v·dt, the free rotation), then its position
         half. Bodies share no contact with particles yet, so this may follow their solve."""
         b = self.bodies
+        kept = None
+        if self.body_forces:  # generators add to the user's forces for this substep only
+            kept = b.force.copy(), b.torque.copy()
+            try:
+                for generator in self.body_forces:
+                    generator.apply(b, dt)
+            except BaseException:
+                b.force[:], b.torque[:] = kept
+                raise
         w = b.inv_mass[:, None]
         # what this substep's forces alone give each body, for the resting-contact trick
         acc = np.where(w > 0.0, self._gravity + b.force * w, 0.0)
         integrate_velocities(b.velocity, b.angular_velocity, b.force, b.torque, b.inv_mass,
                              b.inv_inertia, b.inv_inertia_world, b.linear_damping,
                              b.angular_damping, self._gravity, dt)
+        if kept is not None:
+            b.force[:], b.torque[:] = kept
         planes = [g for g in self.contact_generators if isinstance(g, Plane)]
         generate_body_contacts(b, planes, dt, self.body_contacts)
         rows = self.solver.solve_bodies(b, self.body_contacts, acc, self.body_impulses, dt)
@@ -473,4 +507,5 @@ class World:
             moving = store.inv_mass > 0
             heights = store.position[moving] @ self._gravity
             energy -= float(np.sum(heights / store.inv_mass[moving]))
+        energy += sum(f.potential_energy(self.bodies) for f in self.body_forces)
         return energy + sum(f.potential_energy(self.particles) for f in self.forces)

@@ -6,5 +6,7 @@ bodies: the struct-of-arrays store and ``Body`` handle; step: the kick and drift
 manifold, narrow_sphere, narrow_box, box_box: narrow-phase kernels; narrow: their Python API;
 broadphase: sort and sweep on AABBs; contacts: ``BodyContacts``, the solver's rows; collide:
 pairs and planes through the narrow phase. The solver's body stage is in
-``pointmass.solver.body_stages`` / ``body_solver`` / ``body_direct``.
+``pointmass.solver.body_stages`` / ``body_solver`` / ``body_direct``. forces: body force
+generators (springs on both ends, aero on the point velocity, buoyancy, explosion, user
+callables) for ``World.add``.
 """
