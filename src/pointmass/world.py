@@ -35,7 +35,8 @@ class StepStats:
         mode: The solver mode ("sequential" or "worst-first").
         velocity_passes: Velocity passes of the solver (all substeps; see ``pointmass.solver``).
         position_passes: Projection passes (all substeps).
-        body_contacts: Rigid-body contact points in the last substep (speculative included).
+        body_contacts: Rigid-body contact points in the last substep (speculative included),
+            particle–body points among them.
     """
 
     contacts: int
@@ -172,7 +173,8 @@ class World:
                  resolver: str = "sequential", restitution_threshold: float = 0.0,
                  substeps: int = 1) -> None:
         self.particles = Particles()
-        #: Rigid bodies (``add_body``); they meet each other and every ``Plane``/``Ground``.
+        #: Rigid bodies (``add_body``); they meet each other, every ``Plane``/``Ground`` and every
+        #: particle with radius > 0 (``rigid/particle_body.py``).
         self.bodies = Bodies()
         self.body_contacts = BodyContacts()
         #: The warm start of rigid-body contact points (clear it with ``impulses``).
