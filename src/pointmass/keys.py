@@ -73,6 +73,11 @@ def particle_body_key(particle, body, feature):
             | (feature & (PARTICLE_FEATURE_LIMIT - 1)))
 
 
+def particle_of_key(key: int) -> int:
+    """The particle of a particle–body key (``particle_body_key``)."""
+    return (int(key) >> 3) & (PARTICLE_KEY_LIMIT - 1)
+
+
 def plane_serial(key_base: int) -> int:
     """A plane's serial, from the key base ``plane_key_base`` gave it."""
     return (key_base >> 31) & _SERIAL_MASK

@@ -5,7 +5,7 @@ import numpy as np
 import pytest
 
 import pointmass as pm
-from pointmass.keys import body_pair_key, body_plane_key, particle_body_key
+from pointmass.keys import body_pair_key, body_plane_key, particle_body_key, particle_of_key
 from pointmass.rigid.shapes import Box, Sphere
 
 DT = 1 / 60
@@ -29,6 +29,7 @@ def test_particle_dropped_on_a_box_rests_on_its_top_face_within_a_millimetre_for
         heights.append(world.particles.position[p, 1])
     assert np.abs(np.array(heights) - (1.0 + 0.1)).max() < 1e-3
     assert stats.body_contacts == 5  # the box's 4 corners on the ground, the particle on it
+    assert particle_of_key(world.body_contacts.key[-1]) == p
     assert np.abs(world.particles.velocity[p]).max() < 1e-6
     assert np.linalg.norm(box.position - (0.0, 0.5, 0.0)) < 1e-3
 
@@ -163,6 +164,7 @@ def test_particle_body_keys_are_their_own_family():
     others |= {body_plane_key(a, s, f) for a in (0, 1) for s in (0, 1) for f in range(7)}
     assert not keys & others
     assert all(k >= 0 for k in keys)
+    assert particle_of_key(particle_body_key(2**34 + 5, 2**19, 6)) == 2**34 + 5
 
 
 @pytest.mark.parametrize(("name", "value"), [("particle_friction", -0.1),
