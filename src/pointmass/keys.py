@@ -8,6 +8,8 @@ previous step (``solver/history.py``), so a key must name the same physical cont
 - a link (cable, rod):             bit 61 | link-set serial·2³¹ | link index
 - a rigid-body point:              bit 60 | a·2³⁴ | b·2¹⁴ | feature id (< 2¹⁴), with b the
   other body, or bit 59 set and b the plane's serial for a body on a plane (a, b < 2²⁰)
+- a particle on a rigid body:      bit 60 | bit 58 | body·2³⁸ | particle·2³ | feature id (< 8)
+  (body < 2²⁰, particle < 2³⁵; bit 59 clear; no other body key sets bit 58)
 
 Keys are non-negative int64; -1 means "no key" (no warm start), as custom generators report.
 """
@@ -27,6 +29,10 @@ _BODY_PLANE_BIT = 1 << 59
 #: Bodies and plane serials a body key has room for (20 bits each), and feature ids (14 bits).
 BODY_KEY_LIMIT = 1 << 20
 FEATURE_LIMIT = 1 << 14
+_PARTICLE_BODY_BIT = 1 << 58
+#: Particles a particle–body key has room for (35 bits), and its feature ids (3 bits).
+PARTICLE_KEY_LIMIT = 1 << 35
+PARTICLE_FEATURE_LIMIT = 1 << 3
 _serials = itertools.count()
 
 
@@ -57,6 +63,19 @@ def body_plane_key(a, plane_serial, feature):
     """The key of contact point ``feature`` between body a and the plane of this serial."""
     return (_BODY_BIT | _BODY_PLANE_BIT | (a << 34)
             | ((plane_serial & (BODY_KEY_LIMIT - 1)) << 14) | (feature & (FEATURE_LIMIT - 1)))
+
+
+@njit(cache=True, inline="always")
+def particle_body_key(particle, body, feature):
+    """The key of the contact between a particle (< 2³⁵) and body ``body`` (< 2²⁰) at the
+    narrow phase's feature id (< 8: ``sphere_box``'s region, 0 for a sphere body)."""
+    return (_BODY_BIT | _PARTICLE_BODY_BIT | (body << 38) | (particle << 3)
+            | (feature & (PARTICLE_FEATURE_LIMIT - 1)))
+
+
+def particle_of_key(key: int) -> int:
+    """The particle of a particle–body key (``particle_body_key``)."""
+    return (int(key) >> 3) & (PARTICLE_KEY_LIMIT - 1)
 
 
 def plane_serial(key_base: int) -> int:

@@ -10,13 +10,14 @@ from numba import njit, prange
 
 from . import _validate as check
 from .collide import Plane
-from .contacts import ContactBuffer, ContactGenerator
+from .contacts import ContactBuffer, ContactGenerator, friction_value, restitution_value
 from .forces import ForceGenerator
 from .particles import Particles
 from .rigid.bodies import Bodies, Body
 from .rigid.collide import generate as generate_body_contacts
 from .rigid.contacts import BodyContacts
 from .rigid.forces import BodyForceGenerator
+from .rigid.particle_body import add_particle_contacts
 from .rigid.step import integrate_positions, integrate_velocities
 from .solver import ImpulseHistory, Solver, SolveStats
 from .stability import jump_check, needs_jump_check
@@ -35,7 +36,8 @@ class StepStats:
         mode: The solver mode ("sequential" or "worst-first").
         velocity_passes: Velocity passes of the solver (all substeps; see ``pointmass.solver``).
         position_passes: Projection passes (all substeps).
-        body_contacts: Rigid-body contact points in the last substep (speculative included).
+        body_contacts: Rigid-body contact points in the last substep (speculative included),
+            particle–body points among them.
     """
 
     contacts: int
@@ -172,12 +174,20 @@ class World:
                  resolver: str = "sequential", restitution_threshold: float = 0.0,
                  substeps: int = 1) -> None:
         self.particles = Particles()
-        #: Rigid bodies (``add_body``); they meet each other and every ``Plane``/``Ground``.
+        #: Rigid bodies (``add_body``); they meet each other, every ``Plane``/``Ground`` and every
+        #: particle with radius > 0 (``rigid/particle_body.py``).
         self.bodies = Bodies()
         self.body_contacts = BodyContacts()
         #: The warm start of rigid-body contact points (clear it with ``impulses``).
         self.body_impulses = ImpulseHistory()
         self._body_rows = None
+        #: The particles' surface against rigid bodies (every particle with radius > 0 meets
+        #: every body): a contact uses √(μp·μb) and max(ep, eb), as between two bodies. The
+        #: defaults are ``add_body``'s, so a particle meets a body as a default body would.
+        self.particle_friction = 0.5
+        self.particle_restitution = 0.0
+        #: Whether the body stage changed particle velocities in the step being taken.
+        self._particles_touched = False
         self.forces: list[ForceGenerator] = []
         #: Rigid-body force generators (``pointmass.rigid.forces``), applied before the kick.
         self.body_forces: list[BodyForceGenerator] = []
@@ -252,6 +262,24 @@ class World:
     def restitution_threshold(self, value: float) -> None:
         self.solver.restitution_threshold = check.scalar(value, "restitution_threshold",
                                                          low=0.0)
+
+    @property
+    def particle_friction(self) -> float:
+        """Coulomb μ ≥ 0 of the particles' surface against rigid bodies."""
+        return self._particle_friction
+
+    @particle_friction.setter
+    def particle_friction(self, value: float) -> None:
+        self._particle_friction = friction_value(value, "particle_friction")
+
+    @property
+    def particle_restitution(self) -> float:
+        """Restitution in [0, 1] of the particles' surface against rigid bodies."""
+        return self._particle_restitution
+
+    @particle_restitution.setter
+    def particle_restitution(self, value: float) -> None:
+        self._particle_restitution = restitution_value(value, "particle_restitution")
 
     # -- building --------------------------------------------------------------------------------
     def add_particle(self, position=(0.0, 0.0, 0.0), velocity=(0.0, 0.0, 0.0), *,
@@ -374,6 +402,7 @@ class World:
                  self.bodies.snapshot(), self.body_impulses.snapshot()) \
             if self._substeps > 1 else None
         iterations = velocity_passes = position_passes = 0
+        self._particles_touched = False
         try:
             for _ in range(self._substeps):
                 solved = self._substep(h)
@@ -393,7 +422,8 @@ class World:
         pen = self.contacts.penetration
         # The integration summed the kinetic energy; only the solver changes velocities after
         # it, so a second pass is needed only when there were contacts to solve.
-        energy = (self.particles.kinetic_energy() if self.contacts.count
+        energy = (self.particles.kinetic_energy()
+                  if self.contacts.count or self._particles_touched
                   else float(self._integrated[3]))
         if self.bodies.count:
             energy += self.bodies.kinetic_energy()
@@ -460,7 +490,9 @@ class World:
     def _substep_bodies(self, dt: float):
         """The rigid bodies' substep: kick (gravity, forces, torques), contacts, the solver's
         body stage on velocities, drift (x += v·dt, the free rotation), then its position
-        half. Bodies share no contact with particles yet, so this may follow their solve."""
+        half. Particles with a radius that touch a body join the stage as bodies without
+        inertia (``rigid/particle_body.py``); with none touching, the stage sees the bodies
+        alone, as in a world without particles."""
         b = self.bodies
         kept = None
         if self.body_forces:  # generators add to the user's forces for this substep only
@@ -471,6 +503,7 @@ class World:
             except BaseException:
                 b.force[:], b.torque[:] = kept
                 raise
+        p = self.particles
         w = b.inv_mass[:, None]
         # what this substep's forces alone give each body, for the resting-contact trick
         acc = np.where(w > 0.0, self._gravity + b.force * w, 0.0)
@@ -481,14 +514,28 @@ class World:
             b.force[:], b.torque[:] = kept
         planes = [g for g in self.contact_generators if isinstance(g, Plane)]
         generate_body_contacts(b, planes, dt, self.body_contacts)
-        rows = self.solver.solve_bodies(b, self.body_contacts, acc, self.body_impulses, dt)
+        packed = add_particle_contacts(b, p, dt, self.body_contacts, self._particle_friction,
+                                       self._particle_restitution)
+        if packed is None:
+            rows = self.solver.solve_bodies(b, self.body_contacts, acc, self.body_impulses, dt)
+        else:
+            self._particles_touched = True
+            acc = np.concatenate([acc, p.acceleration[packed.selected]])
+            rows = self.solver.solve_bodies(packed, self.body_contacts, acc,
+                                            self.body_impulses, dt)
+            packed.take_velocities(b, p, dt)
         bad = integrate_positions(b.position, b.orientation, b.velocity, b.angular_velocity,
                                   b.inv_inertia, b.inv_inertia_world, dt)
         if bad >= 0:
             raise FloatingPointError(
                 f"body {bad} became non-finite at t = {self.time:.6g} s (position "
                 f"{b.position[bad].tolist()}, velocity {b.velocity[bad].tolist()})")
-        self.solver.project_bodies(b, rows, self.body_impulses)
+        if packed is None:
+            self.solver.project_bodies(b, rows, self.body_impulses)
+        else:
+            packed.give_positions(b, p)
+            self.solver.project_bodies(packed, rows, self.body_impulses)
+            packed.take_positions(b, p)
         self._body_rows = rows
         return rows
 

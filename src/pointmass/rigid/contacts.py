@@ -16,7 +16,10 @@ class BodyContacts:
     """The contact points of one substep (rebuilt every substep).
 
     Attributes (the first ``count`` rows):
-        a, b: Bodies, shape (M,), int64; b = -1 for scenery (a plane).
+        a, b: Bodies, shape (M,), int64; b = -1 for scenery (a plane). A particle–body row
+            (``particle_body.py``) comes after the body rows with ``a`` ≥ the body count: an
+            index into the solver's packed view, not a particle index (the particle is
+            ``keys.particle_of_key(key)``).
         normal: Unit normal from b to a, shape (M, 3).
         r_a, r_b: Lever arms from each centre of mass to the point [m], shape (M, 3) (r_b is the
             world point itself when b is scenery).

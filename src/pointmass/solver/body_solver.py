@@ -1,8 +1,9 @@
 """The body stage of ``Solver``: rigid-body contact points through ``body_stages``.
 
-It runs in the same substep and the same ``Solver`` as the particle stages, after them: the
-particles and the bodies keep separate stores and separate rows (a particle–body contact is not
-generated yet), so the two sets share no body and the order between them does not matter.
+It runs in the same substep and the same ``Solver`` as the particle stages, after them. The
+bodies it sees may be a packed view (``rigid/particle_body.py``): the bodies, then particles
+that touch them as bodies of zero inverse inertia, so particle–body points are rows like any
+other; particle–particle contacts stay in the particle stages.
 The velocity half runs before the bodies drift, the position half after (``World._substep``).
 """
 
