@@ -4,8 +4,8 @@ Rounds are solid spheres (I = 0.4·m·r²) with the book's masses, radii, dampin
 gravity (a ``BodyGravity``-style generator adds m·(g_round − g_world)): the pistol flies nearly
 flat, artillery (200 kg) lobs into the top of the wall (its muzzle velocity lowered from the
 book's (0, 30, 40), which clears the wall by 10 m), the fireball floats and slows, the laser goes
-straight at 100 m/s (the book's tunnels through boxes, R10: here the speculative contacts of
-four substeps stop it). The boxes are 1 m, μ 0.9, e 0.1. At most ``POOL`` rounds live at once:
+straight at 100 m/s (the book's tunnels through boxes, R10: here speculative contacts stop it
+with the world's defaults). The boxes are 1 m, μ 0.9, e 0.1. At most ``POOL`` rounds live at once:
 the oldest is reloaded as the next.
 
 Keys: 1–4 pick the ammunition, SPACE or a click fires, R rebuilds the wall.
@@ -61,7 +61,7 @@ class RoundGravity(BodyForceGenerator):
 
 
 def build(p: Params) -> Scene:
-    world = World(gravity=GRAVITY, substeps=4)
+    world = World(gravity=GRAVITY)
     world.add(Ground(friction=0.9, restitution=0.1))
     boxes = []
     for row in range(p.rows):

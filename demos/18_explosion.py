@@ -35,7 +35,7 @@ class Params:
 
 
 def build(p: Params) -> Scene:
-    world = World(gravity=(0.0, -9.81, 0.0), substeps=2)
+    world = World(gravity=(0.0, -9.81, 0.0))
     world.add(Ground(friction=0.8, restitution=0.2))
     bodies = []
     for k in range(p.count):
@@ -52,7 +52,7 @@ def build(p: Params) -> Scene:
                                   friction=0.8, restitution=0.2,
                                   linear_damping=0.95, angular_damping=0.8)
         bodies.append(body)
-    return Scene(world, camera=CameraHint(target=(0.0, 0.5, 0.0), distance=17.0, yaw=30.0,
+    return Scene(world, camera=CameraHint(target=(0.0, 0.5, 0.0), distance=22.0, yaw=30.0,
                                           pitch=22.0),
                  dt=1.0 / 60.0,
                  handles={"params": p, "bodies": bodies, "blast": None, "before": None,
