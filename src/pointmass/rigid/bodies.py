@@ -176,6 +176,23 @@ class Bodies:
         """Add a solid box of ``half_extents`` [m]; keywords as ``add``."""
         return self.add(position, orientation, shape=Box(half_extents), **kwargs)
 
+    def set_shape(self, index: int, shape: Sphere | Box, *, mass: float | None = None,
+                  density: float | None = None) -> None:
+        """Give body ``index`` a new ``shape`` and the mass properties of that solid (a block
+        that breaks keeps one of its pieces): mass from ``mass`` [kg] or ``density`` [kg/m³]
+        (each in (0, inf]; one of them), principal moments from the shape, the world inverse
+        inertia from its orientation. Position, orientation and velocities are kept."""
+        i = self.check_index(index)
+        if not isinstance(shape, (Sphere, Box)):
+            raise TypeError(f"shape must be a Sphere or a Box, got {shape!r}")
+        m, moments = mass_properties(shape, density=density, mass=mass)
+        self._inv_mass[i] = 0.0 if math.isinf(m) else 1.0 / m
+        self._inv_inertia[i] = inverse_inertia(moments)
+        self._inv_inertia_world[i] = world_inv_inertia(self._orientation[i],
+                                                       self._inv_inertia[i])
+        self._shape[i] = shape.kind
+        self._size[i] = shape.size
+
     # -- access --------------------------------------------------------------------------------
     def __getitem__(self, index: int) -> Body:
         return Body(self, self.check_index(index))

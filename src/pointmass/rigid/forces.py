@@ -12,6 +12,8 @@ What differs from Cyclone (rigid-notes §1.2, bugs R3 and R4):
 * ``Aero`` works on the velocity of the surface point through the air, v + ω × r − wind
   (Cyclone uses the centre's velocity, so a spinning wing feels nothing and never damps the
   spin; it also *adds* the wind, a sign error if the wind is the air's velocity).
+* ``AeroControl`` (a control surface) is ``Aero`` with its tensor blended min → base → max by
+  a control in [−1, 1], as Cyclone's; its demos then apply the control (the sailboat's never is).
 * ``BodyBuoyancy`` lifts by the submerged fraction ρ·V·g (Cyclone's has the wrong fraction,
   precedence, and no g).
 * ``Explosion`` exists (Cyclone's ``updateForce`` is empty): an outward push falling off with
@@ -222,6 +224,23 @@ def _aero_kernel(pos, quat, vel, ang, force, torque, i, tensor, local, wind):
     torque[i, 2] += rx * fy - ry * fx
 
 
+def aero_tensor(value, name: str) -> np.ndarray:
+    """``value`` as a finite (3, 3) tensor [N·s/m] (3 entries make a diagonal), or an error
+    naming ``name``."""
+    check.numeric(value, name, "a (3, 3) matrix or 3 diagonal entries")
+    try:
+        arr = np.asarray(value, dtype=np.float64)
+    except (TypeError, ValueError):
+        raise ValueError(f"{name} must be a (3, 3) matrix or 3 diagonal entries [N·s/m], "
+                         f"got {value!r}") from None
+    if arr.shape == (3,):
+        arr = np.diag(arr)
+    if arr.shape != (3, 3) or not np.isfinite(arr).all():
+        raise ValueError(f"{name} must be a finite (3, 3) matrix or 3 diagonal entries "
+                         f"[N·s/m], got {arr.tolist()}")
+    return np.ascontiguousarray(arr)
+
+
 class Aero(BodyForceGenerator):
     """Cyclone's aerodynamic surface: a body-space tensor applied to the air velocity.
 
@@ -252,18 +271,7 @@ class Aero(BodyForceGenerator):
 
     @tensor.setter
     def tensor(self, value) -> None:
-        check.numeric(value, "tensor", "a (3, 3) matrix or 3 diagonal entries")
-        try:
-            arr = np.asarray(value, dtype=np.float64)
-        except (TypeError, ValueError):
-            raise ValueError(f"tensor must be a (3, 3) matrix or 3 diagonal entries [N·s/m], "
-                             f"got {value!r}") from None
-        if arr.shape == (3,):
-            arr = np.diag(arr)
-        if arr.shape != (3, 3) or not np.isfinite(arr).all():
-            raise ValueError("tensor must be a finite (3, 3) matrix or 3 diagonal entries "
-                             f"[N·s/m], got {arr.tolist()}")
-        self._tensor = np.ascontiguousarray(arr)
+        self._tensor = aero_tensor(value, "tensor")
 
     wind = property(lambda self: self._wind, lambda self, v: setattr(
         self, "_wind", check.vec3(v, "wind")), doc="The air's velocity [m/s].")
@@ -275,6 +283,51 @@ class Aero(BodyForceGenerator):
         _aero_kernel(bodies.position, bodies.orientation, bodies.velocity,
                      bodies.angular_velocity, bodies.force, bodies.torque, self.index,
                      self._tensor, self.local_position, self._wind)
+
+
+class AeroControl(Aero):
+    """An ``Aero`` surface with a control (an aileron, an elevator, a rudder): Cyclone's
+    ``AeroControl``.
+
+    The tensor in use is interpolated by ``control`` in [−1, 1]: ``minimum`` at −1, ``base`` at
+    0, ``maximum`` at 1, linearly in between (−1..0 blends minimum → base, 0..1 base → maximum).
+    Set ``control`` between steps (from keys); a value outside [−1, 1] is refused.
+
+    Args:
+        body: The body (``Body`` or index).
+        base, minimum, maximum: Tensors [N·s/m] at control 0, −1 and 1: (3, 3) matrices or 3
+            diagonal entries each, finite.
+        local_position: Where the force acts, in body coordinates [m].
+        wind: The air's velocity [m/s].
+        control: The starting control, in [−1, 1].
+    """
+
+    def __init__(self, body, base, minimum, maximum, local_position=(0.0, 0.0, 0.0),
+                 wind=(0.0, 0.0, 0.0), control: float = 0.0) -> None:
+        super().__init__(body, base, local_position, wind)
+        self.base = aero_tensor(base, "base")
+        self.minimum = aero_tensor(minimum, "minimum")
+        self.maximum = aero_tensor(maximum, "maximum")
+        self.control = control
+
+    @property
+    def control(self) -> float:
+        """The control setting in [−1, 1] (−1: ``minimum``, 0: ``base``, 1: ``maximum``)."""
+        return self._control
+
+    @control.setter
+    def control(self, value) -> None:
+        self._control = check.scalar(value, "control", low=-1.0, high=1.0)
+        self.tensor = control_tensor(self.base, self.minimum, self.maximum, self._control)
+
+
+def control_tensor(base: np.ndarray, minimum: np.ndarray, maximum: np.ndarray,
+                   control: float) -> np.ndarray:
+    """The tensor at ``control`` in [−1, 1]: minimum → base over [−1, 0], base → maximum over
+    [0, 1] (linear), shape (3, 3)."""
+    if control < 0.0:
+        return minimum + (control + 1.0) * (base - minimum)
+    return base + control * (maximum - base)
 
 
 # -- buoyancy ------------------------------------------------------------------------------------
