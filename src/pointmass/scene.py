@@ -23,7 +23,7 @@ class CameraHint:
 
     ``yaw`` turns around the vertical axis and ``pitch`` lifts the eye above the horizon
     (both in degrees); ``fov`` is the vertical field of view in degrees; ``follow`` names a
-    particle to keep in view.
+    particle to keep in view, ``follow_body`` a rigid body.
     """
 
     target: tuple[float, float, float] = (0.0, 1.0, 0.0)
@@ -34,6 +34,8 @@ class CameraHint:
     follow: int | None = None
     """A particle the camera keeps looking at as it moves (the target follows it; orbiting and
     zooming stay yours), or None for a fixed target."""
+    follow_body: int | None = None
+    """A rigid body to keep looking at, the same way (``follow`` wins when both are set)."""
 
     @classmethod
     def framing(cls, points, radii=None, *, yaw: float = 30.0, pitch: float = 20.0,

@@ -122,6 +122,23 @@ def test_track_keeps_the_followed_particle_at_the_target():
     assert np.array_equal(cam.target, [5.0, 1.0, 0.0])
 
 
+def test_track_keeps_the_followed_body_at_the_target():
+    """``follow_body`` does for a rigid body what ``follow`` does for a particle."""
+    from pointmass import Scene, World
+    from pointmass.rigid.shapes import Box
+
+    world = World()
+    world.add_body(Box((0.5, 0.5, 0.5)), (0.0, 0.0, 0.0))
+    plane = world.add_body(Box((1.0, 0.2, 0.3)), (2.0, 3.0, 1.0))
+    scene = Scene(world, camera=CameraHint(target=(0.0, 1.0, 0.0), follow_body=plane.index))
+    cam = OrbitCamera.from_hint(scene.camera)
+    cam.track(scene)
+    assert np.array_equal(cam.target, [2.0, 3.0, 1.0])
+    plane.position = (7.0, 8.0, -1.0)
+    cam.track(scene)
+    assert np.array_equal(cam.target, [7.0, 8.0, -1.0])
+
+
 def test_a_scene_without_a_camera_hint_frames_its_particles():
     """The README's first script: after 600 steps its particles are ~9 m down the z axis; a
     Scene made without a CameraHint looks at them, and they project inside the view, neither

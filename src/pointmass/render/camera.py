@@ -113,11 +113,14 @@ class OrbitCamera:
         self.target = np.asarray(point, dtype=np.float64).reshape(3).copy()
 
     def track(self, scene) -> None:
-        """Keep the particle named by ``scene.camera.follow`` (if any) at the target."""
-        index = scene.camera.follow
-        positions = scene.world.particles.position
-        if index is not None and 0 <= index < len(positions):
-            self.focus(positions[index])
+        """Keep the particle named by ``scene.camera.follow`` (or the rigid body named by
+        ``scene.camera.follow_body``), if any, at the target."""
+        hint = scene.camera
+        for index, positions in ((hint.follow, scene.world.particles.position),
+                                 (hint.follow_body, scene.world.bodies.position)):
+            if index is not None and 0 <= index < len(positions):
+                self.focus(positions[index])
+                return
 
     # -- screen <-> world ------------------------------------------------------------------------
     def project(self, points, size: tuple[int, int]) -> np.ndarray:
