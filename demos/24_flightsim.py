@@ -10,7 +10,7 @@ the inertia of a 1 kg block, R5). The ground is a real plane that a box inside t
 lands on (Cyclone clamps y ≥ 0 by hand).
 
 Cyclone's control surfaces change their tensor by 0.5 %, too little to see; ``authority``
-scales that deflection (20× by default: 10 % of the wings' lift, a visible pitch and roll).
+scales that deflection (20× by default: 20 % of the wings' lift, a visible pitch and roll).
 
 Keys (hold): W/S pitch down/up, A/D roll left/right, Q/E rudder (yaw left/right),
 X centres the controls.   Run: pointmass run flightsim --set authority=40
@@ -25,7 +25,7 @@ import numpy as np
 from pointmass import BoxVisual, CameraHint, Ground, Scene, World, tweak
 from pointmass.rigid.bodies import world_rotation
 from pointmass.rigid.forces import Aero, AeroControl, BodyForceGenerator
-from pointmass.rigid.shapes import Box
+from pointmass.rigid.shapes import Box, compound_boxes
 
 TITLE = "Flight simulator (aero surfaces)"
 MASS = 2.5
@@ -59,21 +59,12 @@ class Params:
     thrust: float = tweak(THRUST, 0.0, 30.0, "Propeller thrust [N]")
 
 
-def composite_inertia(parts=PARTS, mass: float = MASS) -> tuple[np.ndarray, np.ndarray]:
-    """Centre of mass [m] (3,) and principal moments [kg m²] (3,) about it of solid boxes
-    (centre, sides) of one density weighing ``mass`` in all, about the body axes. The body
-    stores a diagonal, so the one product of inertia (I_xy = −0.16 kg m², from the rudder and
-    wings sitting above the fuselage) is dropped: it would tilt the principal axes by 4° about
-    z and change the moments by under 1 %."""
-    centres = np.array([c for c, _ in parts.values()])
-    sides = np.array([s for _, s in parts.values()])
-    masses = mass * sides.prod(axis=1) / sides.prod(axis=1).sum()
-    com = masses @ centres / mass
-    tensor = np.zeros((3, 3))
-    for m, c, s in zip(masses, centres - com, sides):
-        own = m / 12.0 * np.array([s[1] ** 2 + s[2] ** 2, s[0] ** 2 + s[2] ** 2,
-                                   s[0] ** 2 + s[1] ** 2])
-        tensor += np.diag(own) + m * (c @ c * np.eye(3) - np.outer(c, c))
+def composite_inertia() -> tuple[np.ndarray, np.ndarray]:
+    """Centre of mass [m] (3,) and moments [kg m²] (3,) about the body axes of the drawn
+    parts at one density. The body stores a diagonal, so the one product of inertia
+    (I_xy = −0.16 kg m², from the rudder and wings sitting above the fuselage) is dropped: it
+    would tilt the principal axes by 4° about z and change the moments by under 1 %."""
+    com, tensor = compound_boxes([(c, np.array(s) / 2) for c, s in PARTS.values()], MASS)
     return com, np.diag(tensor).copy()
 
 

@@ -103,3 +103,28 @@ def mass_properties(shape: Sphere | Box, *, density: float | None = None,
 def _is_inf(value) -> bool:
     check.numeric(value, "mass or density")
     return isinstance(value, (int, float, np.floating)) and value == math.inf
+
+
+def compound_boxes(parts, mass: float) -> tuple[np.ndarray, np.ndarray]:
+    """Mass properties of solid boxes of one density glued together (a drawn vehicle).
+
+    Args:
+        parts: (centre [m], half-extents [m]) pairs along shared axes, at least one.
+        mass: Total mass [kg], > 0; shared by volume.
+
+    Returns:
+        The centre of mass [m], shape (3,), and the inertia tensor about it [kg m²], shape
+        (3, 3) (each box's own moments plus the parallel-axis term m(|c|²·1 − c cᵀ)).
+    """
+    mass = check.scalar(mass, "mass", low=0.0, low_open=True)
+    boxes = [(check.vec3(c, "part centre"), Box(h)) for c, h in parts]
+    if not boxes:
+        raise ValueError("parts must hold at least one (centre, half_extents) pair, got none")
+    volumes = np.array([box.volume for _, box in boxes])
+    masses = mass * volumes / volumes.sum()
+    centre = sum(m * c for m, (c, _) in zip(masses, boxes)) / mass
+    tensor = np.zeros((3, 3))
+    for m, (c, box) in zip(masses, boxes):
+        r = c - centre
+        tensor += np.diag(m * box.unit_inertia()) + m * (r @ r * np.eye(3) - np.outer(r, r))
+    return centre, tensor
