@@ -3,6 +3,8 @@ fired. Each demo's own oracle runs after every frame, not just at the end."""
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 import pytest
 
@@ -93,3 +95,58 @@ def test_fireworks_depend_on_the_seed():
         shows.append(sim.world.particles.position.copy())
     assert np.array_equal(shows[0], shows[1])
     assert not np.array_equal(shows[0], shows[2])
+
+
+def fly(sim: Simulation, keys: set[str], seconds: float) -> None:
+    sim.keys_down = set(keys)
+    sim.advance(seconds)
+
+
+def test_flightsim_held_keys_pitch_and_roll_the_aircraft():
+    """Hold W: the nose pitches down (body pitch rate > 0); S: up; D rolls right, A left; X
+    centres every control."""
+    demo = load_demo("flightsim")
+    rates = demo.module.body_rates
+    for keys, axis, sign in (({"W"}, 2, 1), ({"S"}, 2, -1), ({"D"}, 0, 1), ({"A"}, 0, -1)):
+        sim = Simulation(demo)
+        fly(sim, set(), 2.0)
+        level = rates(sim.scene.handles["plane"])[axis]
+        fly(sim, keys, 0.4)
+        turned = rates(sim.scene.handles["plane"])[axis]
+        assert sign * (turned - level) > 0.05, (keys, level, turned)
+        fly(sim, {"X"}, 1.0 / 60.0)
+        assert all(sim.scene.handles["surfaces"][n].control == 0.0
+                   for n in ("left", "right", "rudder"))
+    sim.check()
+
+
+def test_sailboat_held_rudder_turns_it_and_w_centres():
+    """Hold A: the bow turns to port (heading grows); W puts the sail across and the rudder
+    straight again."""
+    demo = load_demo("sailboat")
+    sim = Simulation(demo)
+    fly(sim, set(), 3.0)
+    start = demo.module.heading(sim.scene.handles["boat"])
+    fly(sim, {"A", "Q"}, 3.0)
+    assert demo.module.heading(sim.scene.handles["boat"]) > start + math.radians(10.0)
+    fly(sim, {"W"}, 0.1)
+    assert sim.scene.handles["rudder"].control == 0.0
+    assert sim.scene.handles["sail_control"] == 1.0
+    sim.check()
+
+
+def test_fracture_space_reassembles_the_block_and_throws_the_next_ball():
+    """After the break, SPACE gives back one whole 100 kg block and a new ball with another
+    random velocity; it breaks again."""
+    sim = Simulation(load_demo("fracture"))
+    sim.advance(2.0)
+    h = sim.scene.handles
+    assert len(h["parts"]) == 8
+    first = h["split"]["before"].copy()
+    sim.press("SPACE")
+    assert sim.world.bodies.count == 2 and h["split"] is None
+    assert 1.0 / sim.world.bodies.inv_mass[h["block"]] == pytest.approx(100.0)
+    sim.advance(2.0)
+    assert len(h["parts"]) == 8
+    assert not np.allclose(h["split"]["before"], first)
+    sim.check()

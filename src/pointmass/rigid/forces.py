@@ -304,8 +304,8 @@ class AeroControl(Aero):
 
     def __init__(self, body, base, minimum, maximum, local_position=(0.0, 0.0, 0.0),
                  wind=(0.0, 0.0, 0.0), control: float = 0.0) -> None:
-        super().__init__(body, base, local_position, wind)
         self.base = aero_tensor(base, "base")
+        super().__init__(body, self.base, local_position, wind)
         self.minimum = aero_tensor(minimum, "minimum")
         self.maximum = aero_tensor(maximum, "maximum")
         self.control = control
