@@ -79,24 +79,29 @@ class Thrust(BodyForceGenerator):
         bodies.force[self.index] += self.strength * nose
 
 
+def _deflections(authority: float) -> tuple[np.ndarray, np.ndarray]:
+    """What full control adds to the wings' and the rudder's tensors [N·s/m], (3, 3) each."""
+    wing = np.zeros((3, 3))
+    wing[1, 0] = -WING_DEFLECTION * authority  # more lift at +1 (u_x < 0 flying forward)
+    rudder = np.zeros((3, 3))
+    rudder[2, 0] = RUDDER_DEFLECTION * authority  # side force from the airspeed
+    return wing, rudder
+
+
 def _surfaces(world: World, body, authority: float) -> dict:
     """The four aero surfaces of Cyclone's aircraft (positions relative to the centre of mass),
     added to ``world``."""
     lift = np.zeros((3, 3))
     lift[1] = LIFT
-    wing_delta = np.zeros((3, 3))
-    wing_delta[1, 0] = -WING_DEFLECTION * authority  # more lift at +1
-    rudder_delta = np.zeros((3, 3))
-    rudder_delta[2, 0] = RUDDER_DEFLECTION * authority  # side force from the airspeed
+    wing, rudder = _deflections(authority)
     tail = lift.copy()
     tail[2, 2] = -0.1  # the tail's keel: damps sideslip
     return {
         # +z is the pilot's left (forward −x, up +y)
-        "left": world.add(AeroControl(body, lift, lift - wing_delta, lift + wing_delta,
-                                      (-1.0, 0.0, 2.0))),
-        "right": world.add(AeroControl(body, lift, lift - wing_delta, lift + wing_delta,
+        "left": world.add(AeroControl(body, lift, lift - wing, lift + wing, (-1.0, 0.0, 2.0))),
+        "right": world.add(AeroControl(body, lift, lift - wing, lift + wing,
                                        (-1.0, 0.0, -2.0))),
-        "rudder": world.add(AeroControl(body, np.zeros((3, 3)), -rudder_delta, rudder_delta,
+        "rudder": world.add(AeroControl(body, np.zeros((3, 3)), -rudder, rudder,
                                         (2.0, 0.5, 0.0))),
         "tail": world.add(Aero(body, tail, (2.0, 0.0, 0.0))),
     }
@@ -142,14 +147,11 @@ def apply(scene: Scene, p: Params) -> None:
     h = scene.handles
     h["params"] = p
     h["thrust"].strength = p.thrust
-    controls = {name: h["surfaces"][name].control for name in ("left", "right", "rudder")}
-    for name in controls:
-        scene.world.remove(h["surfaces"][name])
-    fresh = _surfaces(scene.world, h["plane"], p.authority)
-    scene.world.remove(fresh["tail"])
-    for name, value in controls.items():
-        fresh[name].control = value
-        h["surfaces"][name] = fresh[name]
+    wing, rudder = _deflections(p.authority)
+    for name, delta in (("left", wing), ("right", wing), ("rudder", rudder)):
+        surface = h["surfaces"][name]
+        surface.minimum, surface.maximum = surface.base - delta, surface.base + delta
+        surface.control = surface.control  # the tensor in use, from the new ends
 
 
 def steer(scene: Scene, pitch: float = 0.0, roll: float = 0.0, yaw: float = 0.0) -> None:
