@@ -118,9 +118,10 @@ def build(p: Params) -> Scene:
     visuals = [BoxVisual(half_size=half, color=(0.9, 0.88, 0.82)) for _, half in
                PARTS.values()]
     visuals.append(BoxVisual(half_size=(0.02, 0.85, 0.6), color=(0.95, 0.95, 0.97)))  # sail
+    visuals.append(BoxVisual(half_size=(0.6, 0.1, 0.01), color=(0.9, 0.2, 0.15)))  # pennant
     water = PlaneVisual(center=(0.0, 0.0, 0.0), half_size=(200.0, 200.0),
                         color=(0.2, 0.45, 0.85, 0.45))
-    scene = Scene(world, camera=CameraHint(target=(0.0, 0.5, 0.0), distance=14.0, yaw=-35.0,
+    scene = Scene(world, camera=CameraHint(target=(0.0, 0.5, 0.0), distance=11.0, yaw=-35.0,
                                            pitch=20.0, follow_body=boat),
                   boxes=visuals, planes=[water], ground_height=-3.0, dt=1.0 / 120.0,
                   handles={"boat": world.bodies[boat], "sail": sail, "rudder": rudder,
@@ -159,6 +160,21 @@ def _place_visuals(scene: Scene) -> None:
     local = np.array([0.0, SAIL_HEIGHT, 0.0]) + h["offset"] + spin @ np.array([-0.6, 0, 0])
     sail.center = tuple(boat.position + turn @ local)
     sail.rotation = turn @ spin @ np.array([[0.0, 0.0, 1.0], [0.0, 1.0, 0.0], [-1.0, 0.0, 0.0]])
+    _place_pennant(scene, boat.position + turn @ (np.array(PARTS["mast"][0]) + h["offset"]
+                                                  + (0.0, PARTS["mast"][1][1], 0.0)))
+
+
+def _place_pennant(scene: Scene, top: np.ndarray) -> None:
+    """A red pennant streaming from the masthead along the wind (the true wind: what blows
+    past a boat at rest)."""
+    wind = scene.handles["sail"].wind
+    speed = float(np.linalg.norm(wind))
+    along = wind / speed if speed > 1e-9 else np.array([1.0, 0.0, 0.0])
+    side = np.cross((0.0, 1.0, 0.0), along)
+    side /= max(float(np.linalg.norm(side)), 1e-12)
+    pennant = scene.boxes[len(PARTS) + 1]
+    pennant.rotation = np.column_stack([along, np.cross(side, along), side])
+    pennant.center = tuple(top + 0.6 * along)
 
 
 def apply(scene: Scene, p: Params) -> None:
