@@ -118,7 +118,7 @@ def build(p: Params) -> Scene:
     thrust = world.add(Thrust(plane.index, p.thrust))
     visuals = [BoxVisual(half_size=tuple(np.array(s) / 2), color=color)
                for (_, s), color in zip(PARTS.values(), _COLORS)]
-    scene = Scene(world, camera=CameraHint(target=(0.0, 1.0, 0.0), distance=16.0, yaw=-60.0,
+    scene = Scene(world, camera=CameraHint(target=(0.0, 1.0, 0.0), distance=12.0, yaw=-60.0,
                                            pitch=15.0, follow_body=plane.index),
                   boxes=visuals, dt=1.0 / 120.0,
                   handles={"plane": plane, "surfaces": surfaces, "thrust": thrust,

@@ -71,7 +71,7 @@ def build(p: Params) -> Scene:
                                     angular_velocity=omega, mass=1.0))
     start = [b.bodies.angular_momentum(b.index) for b in boxes]
     caps = [BoxVisual(color=(0.95, 0.95, 0.95)) for _ in boxes]
-    scene = Scene(world, camera=CameraHint(target=(0.0, 0.0, 0.0), distance=7.0, yaw=0.0,
+    scene = Scene(world, camera=CameraHint(target=(0.0, 0.0, 0.0), distance=6.0, yaw=0.0,
                                            pitch=12.0),
                   show_ground=False, dt=1.0 / 120.0, boxes=caps,
                   handles={"boxes": boxes, "L0": start, "lowest": [1.0, 1.0, 1.0],
