@@ -1,13 +1,12 @@
 """Rigid bodies (issue 13). Not exported from pointmass yet; ``World.add_body`` is the way in.
 
 quaternion / scalar: rotations on small arrays / on scalars for hot loops; integrate: the
-torque-free rotation that keeps L and energy; shapes: sphere, box, their mass properties
-(and those of glued boxes); bodies: the struct-of-arrays store and ``Body`` handle; step:
-the kick and drift kernels; manifold, narrow_sphere, narrow_box, box_box: narrow-phase
-kernels; narrow: their Python API;
+torque-free rotation that keeps L and energy; shapes: sphere, box and their mass properties;
+bodies: the struct-of-arrays store and ``Body`` handle; step: the kick and drift kernels;
+manifold, narrow_sphere, narrow_box, box_box: narrow-phase kernels; narrow: their Python API;
 broadphase: sort and sweep on AABBs; contacts: ``BodyContacts``, the solver's rows; collide:
 pairs and planes through the narrow phase. The solver's body stage is in
 ``pointmass.solver.body_stages`` / ``body_solver`` / ``body_direct``. forces: body force
-generators (springs on both ends, aero on the point velocity and its control surface,
-buoyancy, explosion, user callables) for ``World.add``.
+generators (springs on both ends, aero on the point velocity, buoyancy, explosion, user
+callables) for ``World.add``.
 """
