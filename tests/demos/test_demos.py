@@ -18,7 +18,7 @@ SMALL = {"ball_pit": ["count=200"], "cloth": ["size=10"]}
 #: Simulated seconds per demo: long enough for its oracle to have something to judge.
 SECONDS = {"terminal_velocity": 5.5, "buoyancy": 9.0, "newtons_cradle": 1.5}
 
-#: Cyclone's rigid-body demos: past the break, the take-off checks, the settled draft.
+#: Cyclone's rigid-body demos: past the break, the flight's checks, the settled draft.
 SECONDS.update({"flightsim": 4.5, "sailboat": 4.0, "fracture": 6.0})
 
 
