@@ -136,11 +136,8 @@ _COLORS = [(0.85, 0.85, 0.88), (0.75, 0.75, 0.8), (0.85, 0.3, 0.25), (0.25, 0.45
 def _place_visuals(scene: Scene) -> None:
     """The drawing at the body's pose, shifted so that its centre of mass is the body's (the
     collision box ``HULL`` hides inside the fuselage)."""
-    plane = scene.handles["plane"]
-    turn = world_rotation(plane.orientation)
     for (centre, _), visual in zip(PARTS.values(), scene.boxes):
-        visual.center = tuple(plane.position + turn @ (np.array(centre) + scene.handles["offset"]))
-        visual.rotation = turn
+        visual.attach(scene.handles["plane"], np.array(centre) + scene.handles["offset"])
 
 
 def apply(scene: Scene, p: Params) -> None:

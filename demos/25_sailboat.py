@@ -148,20 +148,18 @@ def measured_draft(scene: Scene) -> float:
 def _place_visuals(scene: Scene) -> None:
     h = scene.handles
     boat = h["boat"]
-    turn = world_rotation(boat.orientation)
     for (centre, _), visual in zip(PARTS.values(), scene.boxes):
-        visual.center = tuple(boat.position + turn @ (np.array(centre) + h["offset"]))
-        visual.rotation = turn
-    sail = scene.boxes[len(PARTS)]
+        visual.attach(boat, np.array(centre) + h["offset"])
     angle = 0.5 * math.pi * h["sail_control"]
     c, s = math.cos(angle), math.sin(angle)
     # the sail plate: its normal is the sail tensor's; it hangs aft of the mast
     spin = np.array([[c, 0.0, s], [0.0, 1.0, 0.0], [-s, 0.0, c]])
     local = np.array([0.0, SAIL_HEIGHT, 0.0]) + h["offset"] + spin @ np.array([-0.6, 0, 0])
-    sail.center = tuple(boat.position + turn @ local)
-    sail.rotation = turn @ spin @ np.array([[0.0, 0.0, 1.0], [0.0, 1.0, 0.0], [-1.0, 0.0, 0.0]])
-    _place_pennant(scene, boat.position + turn @ (np.array(PARTS["mast"][0]) + h["offset"]
-                                                  + (0.0, PARTS["mast"][1][1], 0.0)))
+    scene.boxes[len(PARTS)].attach(boat, local, spin @ np.array([[0.0, 0.0, 1.0],
+                                                                 [0.0, 1.0, 0.0],
+                                                                 [-1.0, 0.0, 0.0]]))
+    masthead = np.array(PARTS["mast"][0]) + h["offset"] + (0.0, PARTS["mast"][1][1], 0.0)
+    _place_pennant(scene, boat.to_world(masthead))
 
 
 def _place_pennant(scene: Scene, top: np.ndarray) -> None:

@@ -85,12 +85,10 @@ def build(p: Params) -> Scene:
 def _place_caps(scene: Scene) -> None:
     """A white plate on the face each box was spun about (+axis end), so a flip shows."""
     for body, axis, cap in zip(scene.handles["boxes"], AXES, scene.boxes):
-        turn = world_rotation(body.orientation)
         half = np.array(HALF) * 0.8
         half[axis] = 0.02
         cap.half_size = tuple(half)
-        cap.rotation = turn
-        cap.center = tuple(body.position + turn[:, axis] * (HALF[axis] + 0.02))
+        cap.attach(body, np.eye(3)[axis] * (HALF[axis] + 0.02))
 
 
 def _uprightness(body, axis: int):

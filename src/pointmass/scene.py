@@ -14,6 +14,7 @@ from typing import Any
 
 import numpy as np
 
+from .rigid.bodies import world_rotation
 from .world import World
 
 
@@ -66,6 +67,14 @@ class BoxVisual:
     rotation: np.ndarray = field(default_factory=lambda: np.eye(3))
     color: tuple[float, float, float] = (0.8, 0.5, 0.2)
     wireframe: bool = False
+
+    def attach(self, body, local_center=(0.0, 0.0, 0.0), local_rotation=None) -> None:
+        """Put this box where a rigid ``body`` (a ``Body`` handle) carries it now: its centre
+        at the body point ``local_center`` [m] (body coordinates), its axes the body's turned
+        by ``local_rotation`` (3, 3) if given (a part of a drawn vehicle, a sail)."""
+        turn = world_rotation(body.orientation)
+        self.center = tuple(body.position + turn @ np.asarray(local_center, dtype=np.float64))
+        self.rotation = turn if local_rotation is None else turn @ local_rotation
 
 
 @dataclass
