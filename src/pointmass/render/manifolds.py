@@ -2,8 +2,10 @@
 every contact point, a short line along its normal, and a thin outline joining the points of
 one manifold (the patch a face rests on). Pure numpy, copied into the FrameState at capture.
 
-Speculative points (a gap still inside the margin, depth < 0: the solver only lets them
-close) are drawn dimmer, so the margin at work can be seen without being mistaken for a touch.
+Speculative points (a gap still inside the margin: the solver only lets them close) are drawn
+dimmer, so the margin at work can be seen without being mistaken for a touch. A gap under the
+solver's slop (0.1 mm) counts as touching: a box resting on the ground sits at a depth of
+±1e-15 m, which would otherwise flicker between the two.
 
 A row's point is where the narrow phase put it, midway between the surfaces; it is kept
 relative to body ``b`` (or absolute against a plane), so a point under a resting box stays
@@ -15,6 +17,7 @@ from __future__ import annotations
 import numpy as np
 
 from ..rigid.shapes import BOX
+from ..solver.body_stages import SLOP
 from . import style
 from .gather import LINE_FLOATS, line_rows
 
@@ -69,7 +72,7 @@ def manifold_lines(world, width_scale: float) -> list[np.ndarray]:
     points, normals, depth, manifold, scale = contact_points(world)
     if not len(points):
         return []
-    alpha = np.where(depth >= 0.0, TOUCHING_ALPHA, SPECULATIVE_ALPHA)
+    alpha = np.where(depth > -SLOP, TOUCHING_ALPHA, SPECULATIVE_ALPHA)
     rgb = style.CONTACT_COLOR
     length = np.minimum(NORMAL_LENGTH, NORMAL_FRACTION * scale)[:, None]
     return [outline_rows(points, normals, manifold, alpha, width_scale),
