@@ -106,3 +106,23 @@ def test_a_grab_takes_the_same_trajectory_with_overlap_on_and_off(open_viewer):
         assert np.array_equal(on[name][:steps], off[name][:steps]), name
     moved = np.linalg.norm(on["position"][-1][-1] - on["position"][0][-1])
     assert moved > 0.3                           # the grab did move the top box
+
+
+def test_ctrl_click_on_a_static_body_says_it_is_fixed(open_viewer):
+    from pyglet.window import key, mouse
+
+    from pointmass.rigid.shapes import Box
+
+    sim = pm.Simulation("box_tower", overrides=["count=2"])
+    wall = sim.world.add_body(Box((0.4, 0.4, 0.4)), (0.0, 3.0, 0.0), mass=math.inf)
+    w = open_viewer(sim, paused=True)
+    press_key(w, "TAB")
+    frames(w, 2)
+    v = w.viewer
+    px, py = v.camera.project(wall.position[None], v.renderer.size)[0]
+    x, y = to_window(w, px, py)
+    send(w, "on_mouse_press", x, y, mouse.LEFT, key.MOD_CTRL)
+    send(w, "on_mouse_release", x, y, mouse.LEFT, key.MOD_CTRL)
+    frames(w, 2)
+    assert v.mouse.grab is None and not sim.world.body_forces
+    assert v.messages[-1] == f"body {wall.index} is fixed in place: it cannot be grabbed"

@@ -1,7 +1,7 @@
 """Grabbing with the mouse: a damped spring from the grabbed point toward the cursor (no GL,
 no pyglet). One mechanism, two kinds of target: a particle (``MouseSpring``, here) or a point
-of a rigid body (``body_spring.BodyMouseSpring``), sharing the law ``spring_gains`` and the
-``Grab`` that moves the target and draws the line.
+of a rigid body (``body_spring.BodyMouseSpring``), sharing the law (``rigid.pull.pull_gains``)
+and the ``Grab`` that moves the target and draws the line.
 
 The spring is scaled to what resists the pull, not only to the grabbed particle: the mass of
 everything rods and cables tie to it (a platform moves as one truss) and the stiffness of the
@@ -20,6 +20,7 @@ import numpy as np
 
 from ..forces import ForceGenerator
 from ..particles import Particles
+from ..rigid.pull import pull_gains
 from ..springs import _SpringSet
 
 #: Colour of the spring line [RGB].
@@ -54,19 +55,6 @@ def resistance(world, index: int) -> tuple[float, float]:
     return mass, stiffness
 
 
-def spring_gains(resisting: float, light: float, omega: float, zeta: float, dt: float, *,
-                 stiffness: float = 0.0) -> tuple[float, float]:
-    """(k [N/m], c [N·s/m]) of a mouse spring for a step of ``dt`` [s]: k = max(M·ω², 2·Σk)
-    and c = 2ζ·√(k·M) for the ``resisting`` mass M [kg] and spring constants Σk
-    (``stiffness`` [N/m]), each capped so the explicit step stays stable for the ``light``est
-    mass [kg] the force moves (h²·k/m ≤ 1/2, h·c/m ≤ 1/2: with both, h²ω² + 2hγ ≤ 3/2, well
-    inside the bound of 4 in ``stability.py``). One law for particles and bodies."""
-    k = max(resisting * omega**2, 2.0 * stiffness)
-    k = min(k, 0.5 * light / dt**2)
-    c = min(2.0 * zeta * np.sqrt(k * resisting), 0.5 * light / dt)
-    return k, c
-
-
 class MouseSpring(ForceGenerator):
     """Pulls one particle toward ``target`` [m] with a damped spring scaled to what resists.
 
@@ -93,9 +81,9 @@ class MouseSpring(ForceGenerator):
 
     def gains(self, particles: Particles, dt: float) -> tuple[float, float]:
         """(k [N/m], c [N·s/m]) for a step of ``dt`` [s], capped for stability."""
-        m = 1.0 / particles.inv_mass[self.index]
-        return spring_gains(max(self.mass or m, m), m, self.omega, self.zeta, dt,
-                            stiffness=self.stiffness)
+        m = 1.0 / float(particles.inv_mass[self.index])
+        return pull_gains(max(self.mass or m, m), m, self.omega, self.zeta, dt,
+                          self.stiffness)
 
     def validate(self, particles: Particles) -> None:
         if not 0 <= self.index < particles.count:
