@@ -85,11 +85,11 @@ def test_ctrl_press_on_empty_space_does_nothing_and_says_so(controls):
 def _pull(sim, index: int, offset, seconds: float = 1.0) -> float:
     """Grab ``index``, hold the target ``offset`` [m] from where it was, run; returns how far
     the particle moved toward the target [fraction of the offset]."""
-    from pointmass.app.grab import Grab
+    from pointmass.app.grab import grab_particle
 
     world = sim.world
     start = world.particles.position[index].copy()
-    grab = Grab(world, index, (0.0, 0.0, -1.0))
+    grab = grab_particle(world, index, (0.0, 0.0, -1.0))
     grab.spring.target = start + np.asarray(offset, float)
     sim.advance(seconds)
     moved = world.particles.position[index] - start

@@ -1,4 +1,7 @@
-"""Grabbing a particle with the mouse: a damped spring toward the cursor (no GL, no pyglet).
+"""Grabbing with the mouse: a damped spring from the grabbed point toward the cursor (no GL,
+no pyglet). One mechanism, two kinds of target: a particle (``MouseSpring``, here) or a point
+of a rigid body (``body_spring.BodyMouseSpring``), sharing the law (``rigid.pull.pull_gains``)
+and the ``Grab`` that moves the target and draws the line.
 
 The spring is scaled to what resists the pull, not only to the grabbed particle: the mass of
 everything rods and cables tie to it (a platform moves as one truss) and the stiffness of the
@@ -7,8 +10,8 @@ k = max(M·ω², 2·Σk_springs) and c = 2ζ·√(k·M): a lone particle follows
 (gz-sim's MouseDrag, bullet's point-to-point pick), a cloth node gives way to it visibly. Both are
 capped so the explicit step stays stable for the grabbed particle alone (h²k/m ≤ 1/2,
 h·c/m ≤ 1/2), which is what lets the grab be this strong without blowing a light node away.
-ζ = 1 is critical damping. The target moves in the camera-facing plane through the particle
-where it was grabbed, so dragging moves it across the screen, never toward the eye.
+ζ = 1 is critical damping. The target moves in the camera-facing plane through the grabbed
+point where it was grabbed, so dragging moves it across the screen, never toward the eye.
 """
 
 from __future__ import annotations
@@ -17,6 +20,7 @@ import numpy as np
 
 from ..forces import ForceGenerator
 from ..particles import Particles
+from ..rigid.pull import pull_gains
 from ..springs import _SpringSet
 
 #: Colour of the spring line [RGB].
@@ -64,6 +68,7 @@ class MouseSpring(ForceGenerator):
     """
 
     bounded = True  # caps its own stiffness and damping against the step (stability.py)
+    grabs = "particle"
 
     def __init__(self, index: int, target, *, omega: float = 12.0, zeta: float = 1.0,
                  mass: float | None = None, stiffness: float = 0.0) -> None:
@@ -76,12 +81,9 @@ class MouseSpring(ForceGenerator):
 
     def gains(self, particles: Particles, dt: float) -> tuple[float, float]:
         """(k [N/m], c [N·s/m]) for a step of ``dt`` [s], capped for stability."""
-        m = 1.0 / particles.inv_mass[self.index]
-        resisting = max(self.mass or m, m)
-        k = max(resisting * self.omega**2, 2.0 * self.stiffness)
-        k = min(k, 0.5 * m / dt**2)
-        c = min(2.0 * self.zeta * np.sqrt(k * resisting), 0.5 * m / dt)
-        return k, c
+        m = 1.0 / float(particles.inv_mass[self.index])
+        return pull_gains(max(self.mass or m, m), m, self.omega, self.zeta, dt,
+                          self.stiffness)
 
     def validate(self, particles: Particles) -> None:
         if not 0 <= self.index < particles.count:
@@ -97,6 +99,10 @@ class MouseSpring(ForceGenerator):
         x, v = particles.position[i], particles.velocity[i]
         particles.force[i] += k * (self.target - x) - c * v
 
+    def point(self, world) -> np.ndarray:
+        """Where the grabbed particle is [m], (3,)."""
+        return world.particles.position[self.index].copy()
+
 
 def plane_point(origin, direction, point, normal) -> np.ndarray | None:
     """Where the ray (origin, direction) meets the plane through ``point`` with ``normal``,
@@ -111,19 +117,26 @@ def plane_point(origin, direction, point, normal) -> np.ndarray | None:
 
 
 class Grab:
-    """A grab in progress: the spring in the world and the plane the target moves in."""
+    """A grab in progress: a mouse spring in the world (``MouseSpring`` on a particle or
+    ``BodyMouseSpring`` on a point of a body) and the camera-facing plane its target moves in,
+    through the grabbed point. ``grab_particle`` and ``grab_body`` make one."""
 
-    def __init__(self, world, index: int, normal) -> None:
+    def __init__(self, world, spring, normal) -> None:
         self.world = world
-        pos = world.particles.position[index].copy()
         self.normal = np.asarray(normal, dtype=np.float64)
-        self.plane_point = pos
-        mass, stiffness = resistance(world, index)
-        self.spring = world.add(MouseSpring(index, pos, mass=mass, stiffness=stiffness))
+        self.plane_point = spring.point(world)
+        spring.target = self.plane_point.copy()
+        self.spring = world.add(spring)
 
     @property
     def index(self) -> int:
+        """The grabbed particle or body."""
         return self.spring.index
+
+    @property
+    def kind(self) -> str:
+        """What is held: "particle" or "body"."""
+        return self.spring.grabs
 
     def move(self, origin, direction) -> None:
         """Point the target where the cursor ray meets the grab plane."""
@@ -132,10 +145,18 @@ class Grab:
             self.spring.target = hit
 
     def line(self) -> tuple:
-        """(start, end, rgb) for the renderer's ``extra_lines``: particle to cursor."""
-        start = self.world.particles.position[self.index].copy()
-        return (start, self.spring.target.copy(), SPRING_COLOR)
+        """(start, end, rgb) for the renderer's ``extra_lines``: grabbed point to cursor."""
+        return (self.spring.point(self.world), self.spring.target.copy(), SPRING_COLOR)
 
     def release(self) -> None:
-        if self.spring in self.world.forces:
-            self.world.remove(self.spring)
+        spring = self.spring
+        if any(spring is g for g in (*self.world.forces, *self.world.body_forces)):
+            self.world.remove(spring)
+
+
+def grab_particle(world, index: int, normal) -> Grab:
+    """Grab particle ``index`` with a spring scaled to what resists it (``resistance``); the
+    target moves in the plane through it with ``normal`` (the camera's forward)."""
+    mass, stiffness = resistance(world, index)
+    return Grab(world, MouseSpring(index, world.particles.position[index], mass=mass,
+                                   stiffness=stiffness), normal)

@@ -117,6 +117,6 @@ MOUSE_HELP = (
     ("left drag", "orbit"),
     ("right / Shift+left drag", "pan"),
     ("wheel", "zoom"),
-    ("double-click", "focus on a particle"),
-    ("Ctrl+left drag", "grab a particle (spring)"),
+    ("double-click", "focus on a particle or body"),
+    ("Ctrl+left drag", "grab a particle or body (spring)"),
 )

@@ -2,8 +2,9 @@
 
 Coordinates come in framebuffer pixels with the origin top-left (the window converts pyglet's
 bottom-left window points). A left drag orbits, a right or Shift+left drag pans, the wheel zooms,
-a double-click focuses on the particle under the cursor, a Ctrl+left drag grabs a particle, and
-a left press released without moving is a click (the demo's "CLICK" key, if it binds one).
+a double-click focuses on the particle or body under the cursor, a Ctrl+left drag grabs the
+nearest particle or rigid body under it (a body by the point clicked), and a left press
+released without moving is a click (the demo's "CLICK" key, if it binds one).
 """
 
 from __future__ import annotations
@@ -11,8 +12,11 @@ from __future__ import annotations
 import math
 import time
 
-from ..render import pick_particle
-from .grab import Grab
+import numpy as np
+
+from ..render import Hit, pick
+from .body_spring import grab_body
+from .grab import Grab, grab_particle
 
 #: Degrees of orbit per pixel of drag.
 ORBIT_DEG_PER_PX = 0.35
@@ -47,15 +51,11 @@ class MouseControls:
     def press(self, x: float, y: float, button: str, *, shift=False, ctrl=False) -> None:
         self._press_at, self._moved = (x, y), 0.0
         if button == "left" and ctrl:
-            index = self.pick(x, y)
-            if index is not None and self.sim.scene.world.particles.inv_mass[index] > 0:
-                self.grab = Grab(self.sim.scene.world, index, self.camera.forward)
+            self.mode = None
+            self.grab = self.start_grab(self.pick(x, y))
+            if self.grab is not None:
                 self.grab.move(*self.camera.ray(x, y, self.size()))
                 self.mode = "grab"
-            else:
-                self.mode = None
-                self.say("nothing to grab there: Ctrl+drag starts on a particle" if index is None
-                         else f"particle {index} is fixed in place: it cannot be grabbed")
         elif button == "right" or button == "middle" or (button == "left" and shift):
             self.mode = "pan"
         elif button == "left":
@@ -85,9 +85,9 @@ class MouseControls:
         t, px, py = self._last_click
         if now - t < DOUBLE_CLICK_S and math.hypot(x - px, y - py) < 2 * CLICK_SLOP_PX:
             self._last_click = (-1.0, 0.0, 0.0)
-            index = self.pick(x, y)
-            if index is not None:
-                self.camera.focus(self.sim.scene.world.particles.position[index])
+            hit = self.pick(x, y)
+            if hit is not None:
+                self.camera.focus(self.centre(hit))
             return
         self._last_click = (now, x, y)
         self.sim.press("CLICK")
@@ -95,9 +95,30 @@ class MouseControls:
     def scroll(self, clicks: float) -> None:
         self.camera.zoom(0.9 ** clicks)
 
-    def pick(self, x: float, y: float) -> int | None:
+    def pick(self, x: float, y: float) -> Hit | None:
+        """The nearest particle or body under the pixel (x, y), or None."""
         origin, direction = self.camera.ray(x, y, self.size())
-        return pick_particle(self.sim.scene, origin, direction)
+        return pick(self.sim.scene, origin, direction)
+
+    def start_grab(self, hit: Hit | None) -> Grab | None:
+        """A grab of what was hit, or None, saying why (nothing there, or it is fixed)."""
+        world = self.sim.scene.world
+        if hit is None:
+            self.say("nothing to grab there: Ctrl+drag starts on a particle or a body")
+            return None
+        store = world.particles if hit.kind == "particle" else world.bodies
+        if store.inv_mass[hit.index] <= 0:
+            self.say(f"{hit.kind} {hit.index} is fixed in place: it cannot be grabbed")
+            return None
+        if hit.kind == "particle":
+            return grab_particle(world, hit.index, self.camera.forward)
+        return grab_body(world, hit.index, hit.point, self.camera.forward)
+
+    def centre(self, hit: Hit) -> np.ndarray:
+        """Where a double-click on ``hit`` focuses: the particle's or the body's centre."""
+        world = self.sim.scene.world
+        store = world.particles if hit.kind == "particle" else world.bodies
+        return store.position[hit.index].copy()
 
     def end_grab(self) -> None:
         """Take the spring out of the world (release, reset, close)."""

@@ -13,8 +13,8 @@ an offscreen EGL context and video recording.
 
 from .camera import OrbitCamera
 from .context import RenderUnavailable, create_headless_context
-from .picking import pick_particle
+from .picking import Hit, pick, pick_particle
 from .renderer import Renderer
 
-__all__ = ["OrbitCamera", "RenderUnavailable", "Renderer", "create_headless_context",
-           "pick_particle"]
+__all__ = ["Hit", "OrbitCamera", "RenderUnavailable", "Renderer", "create_headless_context",
+           "pick", "pick_particle"]

@@ -17,7 +17,7 @@ import numpy as np
 
 from ..scene import BoxVisual, PlaneVisual, Scene
 from . import bodies as body_visuals
-from . import gather, geometry
+from . import gather, geometry, manifolds
 from .picking import drawn_radii
 
 _NO_LINES = np.zeros((0, gather.LINE_FLOATS), np.float32)
@@ -35,7 +35,8 @@ class FrameState:
             their spin markers, anchors.
         lines: Line rows (``gather.LINE_FLOATS``): links, plain trails, box edges.
         glow_trails: Line rows of glowing particles' trails (added onto the image).
-        overlay: Line rows drawn over everything: contacts (when shown), caller lines.
+        overlay: Line rows drawn over everything: contacts (when shown: particles', rigid
+            manifolds' points, normals and outlines), caller lines.
         boxes, planes: Copies of the scene's boxes and planes.
         show_ground, ground_height, sky: The scene's backdrop.
     """
@@ -59,7 +60,8 @@ class FrameState:
 
         Args:
             trails: The running Simulation's ``Trails`` (or None: no trails).
-            show_contacts: Also take the world's current contacts (lines along the normals).
+            show_contacts: Also take the world's current contacts: particles' (lines along the
+                normals) and rigid bodies' manifolds (``manifolds.py``).
             extra_lines: (start, end, rgb) triples drawn on top (the viewer's drag spring).
             width_scale: Line widths' scale (the renderer's: its height / 720, at least 1).
         """
@@ -91,6 +93,7 @@ class FrameState:
         overlay = []
         if show_contacts:
             overlay += gather.contact_lines(scene, drawn_radii(scene), width_scale)
+            overlay += manifolds.manifold_lines(scene.world, width_scale)
         overlay += gather.extra_line_rows(extra_lines, width_scale)
         return cls(time=float(scene.world.time), particles=casters, spheres=spheres,
                    lines=_joined(parts), glow_trails=_joined(glow), overlay=_joined(overlay),

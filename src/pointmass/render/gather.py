@@ -164,3 +164,9 @@ def extra_line_rows(extra_lines, width_scale: float) -> list[np.ndarray]:
     end = np.array([e for _, e, _ in extra_lines], np.float64).reshape(-1, 3)
     rgb = np.array([c for _, _, c in extra_lines], np.float64).reshape(-1, 3)
     return [_rows(start, end, rgb, 1.0, style.EXTRA_WIDTH * width_scale, 0.0)]
+
+
+def line_rows(start, end, rgb, alpha, width, dash=0.0) -> np.ndarray:
+    """Line rows from starts and ends [m] (K, 3), rgb (3,) or (K, 3), alpha, width [px] and
+    dash period [m] (scalars or (K,)): for overlays built in other modules."""
+    return _rows(start, end, rgb, alpha, width, dash)

@@ -1,6 +1,9 @@
-"""Picking a particle under the mouse: a ray against every drawn sphere, vectorized."""
+"""Picking under the mouse: a ray against every drawn particle sphere (vectorized) and every
+rigid body (spheres, turned boxes); ``pick`` takes the nearest of either."""
 
 from __future__ import annotations
+
+from typing import NamedTuple
 
 import numpy as np
 
@@ -20,6 +23,12 @@ def pick_particle(scene: Scene, origin, direction) -> int | None:
         origin: Ray origin [m], shape (3,).
         direction: Ray direction, shape (3,) (normalised here).
     """
+    hit = _particle_hit(scene, origin, direction)
+    return None if hit is None else hit[0]
+
+
+def _particle_hit(scene: Scene, origin, direction) -> tuple[int, float] | None:
+    """(index, distance along the normalised ray [m]) of the nearest particle hit, or None."""
     pos = scene.world.particles.position
     if len(pos) == 0:
         return None
@@ -41,7 +50,33 @@ def pick_particle(scene: Scene, origin, direction) -> int | None:
     t = np.where(b - root >= 0, b - root, b + root)   # inside a sphere: the exit point
     t = np.where(hit & (t >= 0), t, np.inf)
     best = int(np.argmin(t))
-    return best if np.isfinite(t[best]) else None
+    return (best, float(t[best])) if np.isfinite(t[best]) else None
+
+
+class Hit(NamedTuple):
+    """What a pick ray met first: a ``kind`` ("particle" or "body") and its ``index``, the
+    ``point`` where the ray entered its drawn surface [m] (3,), and the ``distance`` along the
+    ray [m]."""
+
+    kind: str
+    index: int
+    point: np.ndarray
+    distance: float
+
+
+def pick(scene: Scene, origin, direction) -> Hit | None:
+    """The nearest particle or rigid body the ray hits, or None."""
+    d = np.asarray(direction, dtype=np.float64).reshape(3)
+    d = d / np.linalg.norm(d)
+    o = np.asarray(origin, dtype=np.float64).reshape(3)
+    found = []
+    particle = _particle_hit(scene, o, d)
+    if particle is not None:
+        found.append(Hit("particle", particle[0], o + particle[1] * d, particle[1]))
+    body = pick_body(scene.world, o, d)
+    if body is not None:
+        found.append(Hit("body", *body))
+    return min(found, key=lambda h: h.distance) if found else None
 
 
 def pick_body(world, origin, direction) -> tuple[int, np.ndarray, float] | None:
