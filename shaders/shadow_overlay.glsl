@@ -1,5 +1,5 @@
 #version 330 core
-// Lays the blob-shadow texture (shadow_map.glsl) on the ground: one quad over the square the
+// Lays the blob-shadow texture (render/shadow_splat.py) on the ground: one quad over the square the
 // texture covers, blended dark, just above the ground so it never z-fights the grid.
 
 #if defined VERTEX_SHADER

@@ -5,8 +5,9 @@ A window blits ``renderer.fbo`` to its screen; screenshots, videos and notebook 
 
 Per frame: ``capture`` copies what to draw out of the scene (a ``FrameState``: every sphere
 as centre, radius, color in float32 rows, every line), ``draw`` uploads it in one buffer each;
-then background, ground grid, boxes and opaque planes, blob shadows (the sphere
-buffer again, as flat discs), sphere impostors, lines, translucent planes, and last the glowing
+then the background and ground grid (kept from the last frame while the camera stays put),
+sphere impostors, boxes and opaque planes, the blob shadows (a darkness map splatted on the
+CPU, laid on the ground in one pass), lines, translucent planes, and last the glowing
 particles and their trails, added onto the image (order-free, so never sorted).
 """
 
@@ -27,8 +28,7 @@ from .shaders import load_program
 from .shadows import ShadowMap
 
 _QUAD = np.array([-1, -1, 1, -1, -1, 1, 1, 1], np.float32)       # triangle strip, [-1, 1]^2
-_PROGRAMS = ("background", "ground", "spheres", "shadow_map", "shadow_overlay", "lines",
-             "mesh", "glow")
+_PROGRAMS = ("background", "ground", "spheres", "shadow_overlay", "lines", "mesh", "glow")
 _LINE_QUAD = np.array([0, -1, 1, -1, 0, 1, 1, 1], np.float32)    # along x, across y
 
 
@@ -67,13 +67,11 @@ class Renderer:
             "spheres": ctx.vertex_array(prog["spheres"], [
                 (self._quad, "2f", "in_corner"),
                 (buf, "4f 4f/i", "in_sphere", "in_color")]),
-            "shadow_map": ctx.vertex_array(prog["shadow_map"], [(buf, "4f 12x 1f", "in_sphere",
-                                                                 "in_glow")]),
             "glow": ctx.vertex_array(prog["glow"], [
                 (self._quad, "2f", "in_corner"),
                 (buf, "4f 4f/i", "in_sphere", "in_color")]),
         })
-        self._shadows = ShadowMap(ctx, prog["shadow_map"])
+        self._shadows = ShadowMap(ctx)
         def line_vaos(buf):
             return {"lines": ctx.vertex_array(prog["lines"], [
                 (self._line_quad, "2f", "in_corner"),
@@ -184,8 +182,7 @@ class Renderer:
         scene = frame                                # the backdrop, boxes and planes
         if scene.show_ground:
             n = frame.particles                      # anchors cast no shadow
-            self._shadows.update(scene, self._spheres.host[:n], self._spheres.vaos["shadow_map"],
-                                 style.SHADOW_STRENGTH)
+            self._shadows.update(scene, self._spheres.host[:n], style.SHADOW_STRENGTH)
 
         # The backdrop (sky and ground grid) only changes with the camera and the ground, so
         # it is drawn once into a cache and copied (color and depth) while they stay put: a
