@@ -48,6 +48,7 @@ class Renderer:
         self.ctx = ctx
         self.samples = int(samples)
         prog = {name: load_program(ctx, name, shader_dir) for name in _PROGRAMS}
+        prog["lines_dashed"] = load_program(ctx, "lines", shader_dir, defines=("DASHED",))
         self.programs = prog
         self._quad = ctx.buffer(_QUAD.tobytes())
         self._line_quad = ctx.buffer(_LINE_QUAD.tobytes())
@@ -72,12 +73,15 @@ class Renderer:
                 (buf, "4f 4f/i", "in_sphere", "in_color")]),
         })
         self._shadows = ShadowMap(ctx)
-        def line_vaos(buf):
-            return {"lines": ctx.vertex_array(prog["lines"], [
+        def line_vaos(buf, program="lines"):
+            return {"lines": ctx.vertex_array(prog[program], [
                 (self._line_quad, "2f", "in_corner"),
                 (buf, "3f 3f 4f 2f/i", "in_start", "in_end", "in_color", "in_style")])}
 
         self._lines = Instances(ctx, gather.LINE_FLOATS, line_vaos)
+        # Dashed rows (slack cables and bungees) apart: only their program discards.
+        self._dashed = Instances(ctx, gather.LINE_FLOATS,
+                                 lambda buf: line_vaos(buf, "lines_dashed"), capacity=64)
         # Contacts and caller lines (a mouse spring) are drawn on top of everything: they
         # start inside the spheres they belong to.
         self._overlay = Instances(ctx, gather.LINE_FLOATS, line_vaos, capacity=64)
@@ -174,7 +178,10 @@ class Renderer:
         sky_eye = np.array([0.0, 1.0, 0.0]) @ rot
 
         n_spheres = self._spheres.put(frame.spheres) if len(frame.spheres) else 0
-        n_lines = self._lines.put(frame.lines) if len(frame.lines) else 0
+        dashed = frame.lines[:, 11] > 0.0
+        n_dashed = self._dashed.put(frame.lines[dashed]) if dashed.any() else 0
+        n_lines = self._lines.put(frame.lines[~dashed] if n_dashed else frame.lines) \
+            if len(frame.lines) > n_dashed else 0
         n_glow_trails = self._glow_trails.put(frame.glow_trails) if len(frame.glow_trails) \
             else 0
         n_glow = int(self._spheres.host[:n_spheres, 7].sum()) if n_spheres else 0
@@ -226,13 +233,14 @@ class Renderer:
             self._vaos["shadow_overlay"].render(moderngl.TRIANGLE_STRIP, vertices=4)
             target.depth_mask = True
         ctx.enable(moderngl.BLEND)
-        ln = self.programs["lines"]
-        ln["u_view_proj"].write(vp.tobytes())
-        ln["u_viewport"].value = (float(w), float(h))
-        ln["u_caps"].value = 1.0
-        if n_lines:
-            self._lines.vaos["lines"].render(moderngl.TRIANGLE_STRIP, vertices=4,
-                                             instances=n_lines)
+        for name in ("lines", "lines_dashed"):
+            ln = self.programs[name]
+            ln["u_view_proj"].write(vp.tobytes())
+            ln["u_viewport"].value = (float(w), float(h))
+            ln["u_caps"].value = 1.0
+        for lines, n in ((self._lines, n_lines), (self._dashed, n_dashed)):
+            if n:
+                lines.vaos["lines"].render(moderngl.TRIANGLE_STRIP, vertices=4, instances=n)
         target.depth_mask = False
         self._draw_meshes(scene, vp, light_world, translucent=True)
         if n_glow or n_glow_trails:
@@ -342,6 +350,7 @@ class Renderer:
         self._spheres.release()
         self._shadows.release()
         self._lines.release()
+        self._dashed.release()
         self._overlay.release()
         self._glow_trails.release()
         for vao in self._vaos.values():
