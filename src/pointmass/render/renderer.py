@@ -49,6 +49,7 @@ class Renderer:
         self.samples = int(samples)
         prog = {name: load_program(ctx, name, shader_dir) for name in _PROGRAMS}
         prog["lines_dashed"] = load_program(ctx, "lines", shader_dir, defines=("DASHED",))
+        prog["mesh_instanced"] = load_program(ctx, "mesh", shader_dir, defines=("INSTANCED",))
         self.programs = prog
         self._quad = ctx.buffer(_QUAD.tobytes())
         self._line_quad = ctx.buffer(_LINE_QUAD.tobytes())
@@ -59,8 +60,6 @@ class Renderer:
             "ground": ctx.vertex_array(prog["ground"], [(self._quad, "2f", "in_corner")]),
             "shadow_overlay": ctx.vertex_array(prog["shadow_overlay"],
                                                [(self._quad, "2f", "in_corner")]),
-            "cube": ctx.vertex_array(prog["mesh"], [(self._cube, "3f 3f", "in_position",
-                                                      "in_normal")]),
             "plane": ctx.vertex_array(prog["mesh"], [(self._plane, "3f 3f", "in_position",
                                                        "in_normal")]),
         }
@@ -72,6 +71,13 @@ class Renderer:
                 (self._quad, "2f", "in_corner"),
                 (buf, "4f 4f/i", "in_sphere", "in_color")]),
         })
+        # Solid boxes: one instanced draw of the cube for all (one draw call per box costs
+        # llvmpipe ~0.1 ms each: 30 ms a frame in the box pit).
+        self._boxes = Instances(ctx, geometry.BOX_FLOATS, lambda buf: {
+            "boxes": ctx.vertex_array(prog["mesh_instanced"], [
+                (self._cube, "3f 3f", "in_position", "in_normal"),
+                (buf, "4f 4f 4f 4f/i", "in_model_x", "in_model_y", "in_model_z", "in_color")])},
+            capacity=64)
         self._shadows = ShadowMap(ctx)
         def line_vaos(buf, program="lines"):
             return {"lines": ctx.vertex_array(prog[program], [
@@ -319,11 +325,17 @@ class Renderer:
 
     def _draw_meshes(self, scene: FrameState, vp: np.ndarray, light_world,
                      translucent: bool) -> None:
+        light = tuple(float(x) for x in light_world)
+        if not translucent:
+            solid = [b for b in scene.boxes if not b.wireframe]
+            if solid:
+                n = self._boxes.put(geometry.box_instances(solid))
+                boxes = self.programs["mesh_instanced"]
+                boxes["u_view_proj"].write(vp.tobytes())
+                boxes["u_light"].value = light
+                self._boxes.vaos["boxes"].render(moderngl.TRIANGLES, instances=n)
         mesh = self.programs["mesh"]
         items = []
-        if not translucent:
-            items += [(self._vaos["cube"], geometry.box_model(b.center, b.half_size, b.rotation),
-                       (*b.color, 1.0)) for b in scene.boxes if not b.wireframe]
         for p in scene.planes:
             rgba = tuple(p.color) if len(p.color) == 4 else (*p.color, 1.0)
             if (rgba[3] < 1.0) == translucent:
@@ -332,7 +344,7 @@ class Renderer:
         if not items:
             return
         mesh["u_view_proj"].write(vp.tobytes())
-        mesh["u_light"].value = tuple(float(x) for x in light_world)
+        mesh["u_light"].value = light
         for vao, model, rgba in items:
             mesh["u_model"].write(geometry.gl_matrix(model))
             mesh["u_color"].value = tuple(float(x) for x in rgba)
@@ -351,6 +363,7 @@ class Renderer:
         self._shadows.release()
         self._lines.release()
         self._dashed.release()
+        self._boxes.release()
         self._overlay.release()
         self._glow_trails.release()
         for vao in self._vaos.values():
