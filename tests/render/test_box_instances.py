@@ -33,3 +33,14 @@ def test_rows_are_box_model_rows_and_map_corners_like_it():
                                    b.center + b.rotation @ (np.array(b.half_size) * corner[:3]),
                                    atol=1e-5)
     assert geometry.box_instances([]).shape == (0, geometry.BOX_FLOATS)
+
+
+def test_edge_lines_of_many_boxes_are_each_boxs_edges():
+    boxes = [BoxVisual(center=(k, 0.5 * k, -k), half_size=(0.5, 0.2 + k, 1.0),
+                       rotation=_turn((k, 1, 2), 0.3 * k)) for k in range(3)]
+    start, end = geometry.box_edge_lines(boxes)
+    assert start.shape == end.shape == (36, 3)
+    for k, b in enumerate(boxes):
+        s, e = geometry.box_edges(b.center, b.half_size, b.rotation)
+        np.testing.assert_allclose(start[12 * k:12 * k + 12], s, atol=1e-5)
+        np.testing.assert_allclose(end[12 * k:12 * k + 12], e, atol=1e-5)

@@ -66,6 +66,16 @@ def box_instances(boxes) -> np.ndarray:
     return out
 
 
+def box_edge_lines(boxes) -> tuple[np.ndarray, np.ndarray]:
+    """The 12 edges of every box, box by box: (start (12 N, 3), end (12 N, 3)) [m]."""
+    if not len(boxes):
+        return np.zeros((0, 3)), np.zeros((0, 3))
+    model = box_instances(boxes)[:, :12].astype(float).reshape(-1, 3, 4)
+    corners = np.einsum("nij,kj->nki", model[:, :, :3], _CUBE_CORNERS) + model[:, None, :, 3]
+    return (corners[:, _CUBE_EDGES[:, 0]].reshape(-1, 3),
+            corners[:, _CUBE_EDGES[:, 1]].reshape(-1, 3))
+
+
 def box_edges(center, half_size, rotation) -> tuple[np.ndarray, np.ndarray]:
     """The 12 edges of a box as (start (12, 3), end (12, 3)) [m]."""
     m = box_model(center, half_size, rotation)
