@@ -2,9 +2,12 @@
 
     .venv/bin/python benchmarks/bench_render.py [--spheres 10000] [--frames 60] [--size 1280x720]
 
-1. Full renderer (ground, blob shadows, impostor spheres, links) + readback, frames/s.
+1. Full renderer (ground, blob shadows, impostor spheres, links) + readback, frames/s, with the
+   camera still (the sky and ground kept from frame to frame) and orbiting (redrawn each frame).
 2. A bare instanced-impostor draw of the same spheres (spheres.glsl alone, one upload, no ground,
-   no shadows) + the same readback, in the same run: the ratio full / bare.
+   no shadows) + the same readback, in the same run: the ratio full / bare. Besides wall-clock
+   frames/s, the process's CPU time per frame (every thread's: llvmpipe's rasterizer threads
+   are ours), whose ratio says how much work each frame is and varies less on a shared machine.
 3. Recording a 720p mp4 (render + readback + encode in a thread) vs encoding the same frames
    alone: the ratio record / encode-only.
 """
@@ -43,23 +46,26 @@ def sphere_scene(count: int, seed: int = 0) -> pm.Scene:
 def timed(fn, frames: int, warmup: int = 3, rounds: int = 3) -> float:
     """Frames per second of ``fn``: the best of ``rounds`` runs of ``frames`` frames (after a
     warm-up). The best run is the one least disturbed by other work on a shared machine."""
-    return timed_together([fn], frames, warmup, rounds)[0]
+    return timed_together([fn], frames, warmup, rounds)[0][0]
 
 
-def timed_together(fns, frames: int, warmup: int = 3, rounds: int = 5) -> list[float]:
+def timed_together(fns, frames: int, warmup: int = 3, rounds: int = 5):
     """Like ``timed`` for several functions, their rounds interleaved, so that a slow spell of
-    the machine hits them alike (ratios between them stay fair)."""
+    the machine hits them alike (ratios between them stay fair). Returns (frames/s, CPU
+    seconds per frame) lists: each function's best round by each measure."""
     for fn in fns:
         for _ in range(warmup):
             fn()
     best = [float("inf")] * len(fns)
+    cpu = [float("inf")] * len(fns)
     for _ in range(rounds):
         for k, fn in enumerate(fns):
-            t0 = time.perf_counter()
+            t0, c0 = time.perf_counter(), time.process_time()
             for _ in range(frames):
                 fn()
             best[k] = min(best[k], time.perf_counter() - t0)
-    return [frames / b for b in best]
+            cpu[k] = min(cpu[k], time.process_time() - c0)
+    return [frames / b for b in best], [c / frames for c in cpu]
 
 
 def bare_impostors(ctx: moderngl.Context, renderer: Renderer, scene: pm.Scene, camera):
@@ -117,19 +123,33 @@ def main() -> None:
         renderer.render(scene, camera)
         ctx.finish()
 
+    orbit = OrbitCamera.from_hint(scene.camera)
+
+    def full_orbit() -> None:
+        orbit.yaw += 0.5                        # [deg]: the sky and ground are redrawn
+        renderer.render(scene, orbit)
+        renderer.read_rgb()
+
     print(f"{ctx.info['GL_RENDERER']}, {size[0]}x{size[1]}, {args.spheres} spheres")
     bare = bare_impostors(ctx, renderer, scene, camera)
-    fps_full, fps_bare, fps_full_nr = timed_together([full, bare, full_no_read], args.frames)
+    (fps_full, fps_bare, fps_full_nr, fps_orbit), (cpu_full, cpu_bare, _, cpu_orbit) = \
+        timed_together([full, bare, full_no_read, full_orbit], args.frames)
     if args.save:
         from PIL import Image
         renderer.render(scene, camera)
         Image.fromarray(renderer.read_rgb()).save(args.save)
     fps_read = timed(renderer.read_rgb, args.frames)
-    print(f"full renderer + readback : {fps_full:6.1f} frames/s")
+    print(f"full renderer + readback : {fps_full:6.1f} frames/s, "
+          f"{1e3 * cpu_full:5.1f} ms CPU/frame")
+    print(f"  camera orbiting        : {fps_orbit:6.1f} frames/s, "
+          f"{1e3 * cpu_orbit:5.1f} ms CPU/frame")
     print(f"full renderer, no read   : {fps_full_nr:6.1f} frames/s")
-    print(f"bare impostors + readback: {fps_bare:6.1f} frames/s")
+    print(f"bare impostors + readback: {fps_bare:6.1f} frames/s, "
+          f"{1e3 * cpu_bare:5.1f} ms CPU/frame")
     print(f"readback alone           : {fps_read:6.1f} frames/s")
-    print(f"ratio full / bare        : {fps_full / fps_bare:6.2f}")
+    print(f"ratio full / bare        : {fps_full / fps_bare:6.2f} (CPU time: "
+          f"{cpu_bare / cpu_full:.2f}); orbiting {fps_orbit / fps_bare:.2f} "
+          f"(CPU time: {cpu_bare / cpu_orbit:.2f})")
 
     # Recording: the side-library demo at 720p (shaders already compiled: one renderer), vs
     # encoding the same frames alone.

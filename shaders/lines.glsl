@@ -1,6 +1,7 @@
 #version 330 core
 // Thick lines as instanced screen-space quads (core profile has no wide GL lines):
-// width in pixels, optional dashes measured in metres along the segment.
+// width in pixels, optional dashes measured in metres along the segment (the DASHED variant,
+// for rows with a dash period > 0; the plain one draws every row solid).
 
 #if defined VERTEX_SHADER
 
@@ -68,10 +69,14 @@ flat in float v_half;
 out vec4 f_color;
 
 void main() {
-    if (v_dash > 0.0 && fract(v_along / v_dash) > 0.55) discard;
-    // Soft one-pixel edge: coverage falls from 1 to 0 across the last pixel.
+#if defined DASHED
+    // Only this variant can discard: on llvmpipe a shader that may discard while writing depth
+    // costs about twice as much per pixel, so solid lines (nearly all) are drawn without it.
+    if (fract(v_along / v_dash) > 0.55) discard;
+#endif
+    // Soft one-pixel edge: coverage falls from 1 to 0 across the last pixel (the quad ends
+    // where it reaches 0).
     float coverage = clamp(v_half + 0.5 - abs(v_across), 0.0, 1.0);
-    if (coverage <= 0.0) discard;
     f_color = vec4(v_color.rgb, v_color.a * coverage);
 }
 

@@ -1,5 +1,5 @@
 #version 330 core
-// Lays the blob-shadow texture (shadow_map.glsl) on the ground: one quad over the square the
+// Lays the blob-shadow texture (render/shadow_splat.py) on the ground: one quad over the square the
 // texture covers, blended dark, just above the ground so it never z-fights the grid.
 
 #if defined VERTEX_SHADER
@@ -26,9 +26,9 @@ uniform float u_uv_scale;     // the part of the texture in use (1, or 0.5 for c
 out vec4 f_color;
 
 void main() {
-    float dark = texture(u_shadow, v_uv * u_uv_scale).r;
-    if (dark <= 0.004) discard;
-    f_color = vec4(0.0, 0.0, 0.0, dark);
+    // No discard where there is no shadow: alpha 0 blends to the same pixel, and on llvmpipe
+    // a discard costs more than the blend it saves.
+    f_color = vec4(0.0, 0.0, 0.0, texture(u_shadow, v_uv * u_uv_scale).r);
 }
 
 #endif

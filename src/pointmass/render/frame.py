@@ -83,10 +83,12 @@ class FrameState:
             parts += gather.link_lines(scene, width_scale)
         if have_trails:
             parts += gather.trail_lines(scene, trails, scene.particle_colors(), width_scale)
-        for box in boxes:
-            start, end = geometry.box_edges(box.center, box.half_size, box.rotation)
-            rgb = np.asarray(box.color) * (1.0 if box.wireframe else 0.45)
-            width = (2.0 if box.wireframe else 1.5) * width_scale
+        if boxes:
+            start, end = geometry.box_edge_lines(boxes)
+            wire = np.repeat([b.wireframe for b in boxes], 12)
+            rgb = np.repeat([tuple(b.color)[:3] for b in boxes], 12, axis=0) \
+                * np.where(wire, 1.0, 0.45)[:, None]
+            width = np.where(wire, 2.0, 1.5) * width_scale
             parts.append(gather._rows(start, end, rgb, 1.0, width, 0.0))
         glow = gather.trail_lines(scene, trails, scene.particle_colors(), width_scale,
                                   glowing=True) if have_trails else []

@@ -45,6 +45,37 @@ def box_model(center, half_size, rotation) -> np.ndarray:
     return m
 
 
+#: Floats per box instance (mesh.glsl's INSTANCED variant): the model's 3 rows, rgba.
+BOX_FLOATS = 16
+
+
+def box_instances(boxes) -> np.ndarray:
+    """Instance rows of ``boxes`` (each with center, half_size, rotation, rgb color), shape
+    (N, BOX_FLOATS) float32: rows 0-2 of the model matrix of ``box_model``, then rgb and
+    alpha 1."""
+    out = np.empty((len(boxes), BOX_FLOATS), np.float32)
+    if not len(boxes):
+        return out
+    center = np.array([b.center for b in boxes], float).reshape(-1, 3)
+    half = np.array([b.half_size for b in boxes], float).reshape(-1, 3)
+    rot = np.array([b.rotation for b in boxes], float).reshape(-1, 3, 3)
+    model = np.concatenate([rot * half[:, None, :], center[:, :, None]], axis=2)   # (N, 3, 4)
+    out[:, :12] = model.reshape(-1, 12)
+    out[:, 12:15] = [tuple(b.color)[:3] for b in boxes]
+    out[:, 15] = 1.0
+    return out
+
+
+def box_edge_lines(boxes) -> tuple[np.ndarray, np.ndarray]:
+    """The 12 edges of every box, box by box: (start (12 N, 3), end (12 N, 3)) [m]."""
+    if not len(boxes):
+        return np.zeros((0, 3)), np.zeros((0, 3))
+    model = box_instances(boxes)[:, :12].astype(float).reshape(-1, 3, 4)
+    corners = np.einsum("nij,kj->nki", model[:, :, :3], _CUBE_CORNERS) + model[:, None, :, 3]
+    return (corners[:, _CUBE_EDGES[:, 0]].reshape(-1, 3),
+            corners[:, _CUBE_EDGES[:, 1]].reshape(-1, 3))
+
+
 def box_edges(center, half_size, rotation) -> tuple[np.ndarray, np.ndarray]:
     """The 12 edges of a box as (start (12, 3), end (12, 3)) [m]."""
     m = box_model(center, half_size, rotation)

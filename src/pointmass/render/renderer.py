@@ -5,8 +5,9 @@ A window blits ``renderer.fbo`` to its screen; screenshots, videos and notebook 
 
 Per frame: ``capture`` copies what to draw out of the scene (a ``FrameState``: every sphere
 as centre, radius, color in float32 rows, every line), ``draw`` uploads it in one buffer each;
-then background, ground grid, boxes and opaque planes, blob shadows (the sphere
-buffer again, as flat discs), sphere impostors, lines, translucent planes, and last the glowing
+then the background and ground grid (kept from the last frame while the camera stays put),
+sphere impostors, boxes and opaque planes, the blob shadows (a darkness map splatted on the
+CPU, laid on the ground in one pass), lines, translucent planes, and last the glowing
 particles and their trails, added onto the image (order-free, so never sorted).
 """
 
@@ -27,8 +28,7 @@ from .shaders import load_program
 from .shadows import ShadowMap
 
 _QUAD = np.array([-1, -1, 1, -1, -1, 1, 1, 1], np.float32)       # triangle strip, [-1, 1]^2
-_PROGRAMS = ("background", "ground", "spheres", "shadow_map", "shadow_overlay", "lines",
-             "mesh", "glow")
+_PROGRAMS = ("background", "ground", "spheres", "shadow_overlay", "lines", "mesh", "glow")
 _LINE_QUAD = np.array([0, -1, 1, -1, 0, 1, 1, 1], np.float32)    # along x, across y
 
 
@@ -48,6 +48,8 @@ class Renderer:
         self.ctx = ctx
         self.samples = int(samples)
         prog = {name: load_program(ctx, name, shader_dir) for name in _PROGRAMS}
+        prog["lines_dashed"] = load_program(ctx, "lines", shader_dir, defines=("DASHED",))
+        prog["mesh_instanced"] = load_program(ctx, "mesh", shader_dir, defines=("INSTANCED",))
         self.programs = prog
         self._quad = ctx.buffer(_QUAD.tobytes())
         self._line_quad = ctx.buffer(_LINE_QUAD.tobytes())
@@ -58,8 +60,6 @@ class Renderer:
             "ground": ctx.vertex_array(prog["ground"], [(self._quad, "2f", "in_corner")]),
             "shadow_overlay": ctx.vertex_array(prog["shadow_overlay"],
                                                [(self._quad, "2f", "in_corner")]),
-            "cube": ctx.vertex_array(prog["mesh"], [(self._cube, "3f 3f", "in_position",
-                                                      "in_normal")]),
             "plane": ctx.vertex_array(prog["mesh"], [(self._plane, "3f 3f", "in_position",
                                                        "in_normal")]),
         }
@@ -67,19 +67,27 @@ class Renderer:
             "spheres": ctx.vertex_array(prog["spheres"], [
                 (self._quad, "2f", "in_corner"),
                 (buf, "4f 4f/i", "in_sphere", "in_color")]),
-            "shadow_map": ctx.vertex_array(prog["shadow_map"], [(buf, "4f 12x 1f", "in_sphere",
-                                                                 "in_glow")]),
             "glow": ctx.vertex_array(prog["glow"], [
                 (self._quad, "2f", "in_corner"),
                 (buf, "4f 4f/i", "in_sphere", "in_color")]),
         })
-        self._shadows = ShadowMap(ctx, prog["shadow_map"])
-        def line_vaos(buf):
-            return {"lines": ctx.vertex_array(prog["lines"], [
+        # Solid boxes: one instanced draw of the cube for all (one draw call per box costs
+        # llvmpipe ~0.1 ms each: 30 ms a frame in the box pit).
+        self._boxes = Instances(ctx, geometry.BOX_FLOATS, lambda buf: {
+            "boxes": ctx.vertex_array(prog["mesh_instanced"], [
+                (self._cube, "3f 3f", "in_position", "in_normal"),
+                (buf, "4f 4f 4f 4f/i", "in_model_x", "in_model_y", "in_model_z", "in_color")])},
+            capacity=64)
+        self._shadows = ShadowMap(ctx)
+        def line_vaos(buf, program="lines"):
+            return {"lines": ctx.vertex_array(prog[program], [
                 (self._line_quad, "2f", "in_corner"),
                 (buf, "3f 3f 4f 2f/i", "in_start", "in_end", "in_color", "in_style")])}
 
         self._lines = Instances(ctx, gather.LINE_FLOATS, line_vaos)
+        # Dashed rows (slack cables and bungees) apart: only their program discards.
+        self._dashed = Instances(ctx, gather.LINE_FLOATS,
+                                 lambda buf: line_vaos(buf, "lines_dashed"), capacity=64)
         # Contacts and caller lines (a mouse spring) are drawn on top of everything: they
         # start inside the spheres they belong to.
         self._overlay = Instances(ctx, gather.LINE_FLOATS, line_vaos, capacity=64)
@@ -176,7 +184,10 @@ class Renderer:
         sky_eye = np.array([0.0, 1.0, 0.0]) @ rot
 
         n_spheres = self._spheres.put(frame.spheres) if len(frame.spheres) else 0
-        n_lines = self._lines.put(frame.lines) if len(frame.lines) else 0
+        dashed = frame.lines[:, 11] > 0.0
+        n_dashed = self._dashed.put(frame.lines[dashed]) if dashed.any() else 0
+        n_lines = self._lines.put(frame.lines[~dashed] if n_dashed else frame.lines) \
+            if len(frame.lines) > n_dashed else 0
         n_glow_trails = self._glow_trails.put(frame.glow_trails) if len(frame.glow_trails) \
             else 0
         n_glow = int(self._spheres.host[:n_spheres, 7].sum()) if n_spheres else 0
@@ -184,8 +195,7 @@ class Renderer:
         scene = frame                                # the backdrop, boxes and planes
         if scene.show_ground:
             n = frame.particles                      # anchors cast no shadow
-            self._shadows.update(scene, self._spheres.host[:n], self._spheres.vaos["shadow_map"],
-                                 style.SHADOW_STRENGTH)
+            self._shadows.update(scene, self._spheres.host[:n], style.SHADOW_STRENGTH)
 
         # The backdrop (sky and ground grid) only changes with the camera and the ground, so
         # it is drawn once into a cache and copied (color and depth) while they stay put: a
@@ -229,13 +239,14 @@ class Renderer:
             self._vaos["shadow_overlay"].render(moderngl.TRIANGLE_STRIP, vertices=4)
             target.depth_mask = True
         ctx.enable(moderngl.BLEND)
-        ln = self.programs["lines"]
-        ln["u_view_proj"].write(vp.tobytes())
-        ln["u_viewport"].value = (float(w), float(h))
-        ln["u_caps"].value = 1.0
-        if n_lines:
-            self._lines.vaos["lines"].render(moderngl.TRIANGLE_STRIP, vertices=4,
-                                             instances=n_lines)
+        for name in ("lines", "lines_dashed"):
+            ln = self.programs[name]
+            ln["u_view_proj"].write(vp.tobytes())
+            ln["u_viewport"].value = (float(w), float(h))
+            ln["u_caps"].value = 1.0
+        for lines, n in ((self._lines, n_lines), (self._dashed, n_dashed)):
+            if n:
+                lines.vaos["lines"].render(moderngl.TRIANGLE_STRIP, vertices=4, instances=n)
         target.depth_mask = False
         self._draw_meshes(scene, vp, light_world, translucent=True)
         if n_glow or n_glow_trails:
@@ -314,11 +325,17 @@ class Renderer:
 
     def _draw_meshes(self, scene: FrameState, vp: np.ndarray, light_world,
                      translucent: bool) -> None:
+        light = tuple(float(x) for x in light_world)
+        if not translucent:
+            solid = [b for b in scene.boxes if not b.wireframe]
+            if solid:
+                n = self._boxes.put(geometry.box_instances(solid))
+                boxes = self.programs["mesh_instanced"]
+                boxes["u_view_proj"].write(vp.tobytes())
+                boxes["u_light"].value = light
+                self._boxes.vaos["boxes"].render(moderngl.TRIANGLES, instances=n)
         mesh = self.programs["mesh"]
         items = []
-        if not translucent:
-            items += [(self._vaos["cube"], geometry.box_model(b.center, b.half_size, b.rotation),
-                       (*b.color, 1.0)) for b in scene.boxes if not b.wireframe]
         for p in scene.planes:
             rgba = tuple(p.color) if len(p.color) == 4 else (*p.color, 1.0)
             if (rgba[3] < 1.0) == translucent:
@@ -327,7 +344,7 @@ class Renderer:
         if not items:
             return
         mesh["u_view_proj"].write(vp.tobytes())
-        mesh["u_light"].value = tuple(float(x) for x in light_world)
+        mesh["u_light"].value = light
         for vao, model, rgba in items:
             mesh["u_model"].write(geometry.gl_matrix(model))
             mesh["u_color"].value = tuple(float(x) for x in rgba)
@@ -345,6 +362,8 @@ class Renderer:
         self._spheres.release()
         self._shadows.release()
         self._lines.release()
+        self._dashed.release()
+        self._boxes.release()
         self._overlay.release()
         self._glow_trails.release()
         for vao in self._vaos.values():

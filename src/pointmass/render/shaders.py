@@ -34,20 +34,22 @@ def shader_dir(explicit: str | Path | None = None) -> Path:
     raise FileNotFoundError(f"pointmass shaders not found; looked in {tried}")
 
 
-def stage_sources(text: str) -> dict[str, str]:
-    """The source of every stage a single-file program defines, keyed by stage name."""
+def stage_sources(text: str, defines: tuple[str, ...] = ()) -> dict[str, str]:
+    """The source of every stage a single-file program defines, keyed by stage name, each with
+    ``#define NAME`` for its stage and for every name in ``defines`` (a variant)."""
     first, _, rest = text.partition("\n")
     if not first.startswith("#version"):
         raise ValueError("a shader file must start with its #version line")
-    return {stage: f"{first}\n#define {stage}\n{rest}" for stage in STAGES
+    extra = "".join(f"#define {name}\n" for name in defines)
+    return {stage: f"{first}\n#define {stage}\n{extra}{rest}" for stage in STAGES
             if f"defined {stage}" in rest}
 
 
-def load_program(ctx: moderngl.Context, name: str, directory: str | Path | None = None
-                 ) -> moderngl.Program:
-    """Compile ``<shader_dir>/<name>.glsl``."""
+def load_program(ctx: moderngl.Context, name: str, directory: str | Path | None = None, *,
+                 defines: tuple[str, ...] = ()) -> moderngl.Program:
+    """Compile ``<shader_dir>/<name>.glsl``, with ``defines`` (names) set before its code."""
     path = shader_dir(directory) / f"{name}.glsl"
-    src = stage_sources(path.read_text())
+    src = stage_sources(path.read_text(), defines)
     return ctx.program(vertex_shader=src["VERTEX_SHADER"],
                        geometry_shader=src.get("GEOMETRY_SHADER"),
                        fragment_shader=src["FRAGMENT_SHADER"])
