@@ -29,7 +29,8 @@ class Particles:
         force: Force accumulator [N], shape (N, 3); the integration reads and clears it, so a
             force added before a step acts in it (in its first substep).
         acceleration: Acceleration used by the last integration [m/s²], shape (N, 3); the
-            resolver's resting-contact test reads it.
+            resolver's resting-contact test reads it. The world stores it only when it has
+            contact generators or rigid bodies (its readers); otherwise it is left as it was.
         inv_mass: Inverse mass [1/kg], shape (N,); 0 means infinite mass (immovable).
         radius: Collision radius [m], shape (N,); 0 means a point that never collides as a sphere.
         damping: Fraction of velocity kept per second, in [0, 1], shape (N,); 1 means none.
