@@ -63,8 +63,8 @@ class FusedTerms(NamedTuple):
     a = acceleration + (F_accumulated - (k1 + k2·|v|)·v) / m, from the velocity before the step
     (as a generator applied before the integration sees it)."""
 
-    #: A uniform acceleration [m/s²], shape (3,) (gravity: F = m·g).
-    acceleration: np.ndarray
+    #: A uniform acceleration [m/s²], shape (3,) (gravity: F = m·g), or None.
+    acceleration: np.ndarray | None = None
     #: Linear drag coefficient [N·s/m].
     k1: float = 0.0
     #: Quadratic drag coefficient [N·s²/m²].
@@ -83,7 +83,8 @@ def fold(generators, gravity: np.ndarray) -> tuple[list, np.ndarray, float, floa
         if terms is None:
             accumulating.append(generator)
         else:
-            g = g + terms.acceleration
+            if terms.acceleration is not None:
+                g = g + terms.acceleration
             k1 += terms.k1
             k2 += terms.k2
     return accumulating, g, k1, k2
@@ -221,12 +222,8 @@ class Drag(ForceGenerator):
     def fused_terms(self) -> FusedTerms | None:
         # On every particle, the world computes it in the integration kernel (same formula).
         if self._sel._given is None and _own_apply(self, Drag):
-            return FusedTerms(_NO_ACCELERATION, self._k1, self._k2)
+            return FusedTerms(None, self._k1, self._k2)
         return None
-
-
-_NO_ACCELERATION = np.zeros(3)
-_NO_ACCELERATION.flags.writeable = False
 
 
 @njit(cache=True, nogil=True)

@@ -77,3 +77,17 @@ def test_the_resting_contact_test_sees_folded_forces():
     world.add(pm.Ground())
     world.step(DT)
     assert world.particles.acceleration[p] == pytest.approx((-0.2 * 2.0 / 0.5, -10.81, 0.0))
+
+
+def test_a_copied_store_keeps_its_views_on_its_own_arrays():
+    """The properties return views cached per count: a deep copy rebuilds them on the copy's
+    arrays, so what is written through them survives growth and is not the original's."""
+    import copy
+
+    world = _flying(5)
+    twin = copy.deepcopy(world)
+    twin.particles.position[0] = (7.0, 8.0, 9.0)
+    twin.add_particle()  # the arrays may grow; the views are rebuilt
+    assert twin.particles.position[0].tolist() == [7.0, 8.0, 9.0]
+    assert world.particles.position[0].tolist() != [7.0, 8.0, 9.0]
+    assert twin.particles.count == 6 and world.particles.count == 5
