@@ -12,7 +12,7 @@ from . import _validate as check
 from .collide import Plane
 from .contacts import ContactBuffer, ContactGenerator, friction_value, restitution_value
 from .forces import ForceGenerator, drag_force, fold
-from .particles import Particles
+from .particles import CHUNK, PARALLEL_MIN_PARTICLES, Particles
 from .rigid.bodies import Bodies, Body
 from .rigid.collide import generate as generate_body_contacts
 from .rigid.contacts import BodyContacts
@@ -50,9 +50,6 @@ class StepStats:
     body_contacts: int = 0
 
 
-#: Below this many particles the integration runs on one core: starting threads costs more
-#: than it saves (measured ~2 ms per call on a busy 2-core machine, against microseconds).
-PARALLEL_MIN_PARTICLES = 50_000
 
 
 @njit(cache=True, inline="always")
@@ -103,31 +100,28 @@ def _first_not_finite(pos, vel, start, stop):
 
 
 @njit(cache=True, nogil=True)
-def _integrate(pos, vel, force, acc, inv_mass, damping, g, k1, k2, dt, store_acc, out):
-    """Integrate particles ``out[0]`` to ``out[1]`` (a chunk); stores into ``out[2]`` the first
-    that is not finite (or -1) and into ``out[3]`` their kinetic energy after the step. The
-    acceleration is stored only with ``store_acc`` (when something reads it: the solver's
-    resting-contact test).
+def _integrate(pos, vel, force, acc, inv_mass, damping, g, k1, k2, dt, store_acc, start, stop):
+    """Integrate particles ``start`` to ``stop`` (a chunk); returns the first that is not
+    finite afterwards, or -1. The acceleration is stored only with ``store_acc`` (when
+    something reads it: the solver's resting-contact test).
 
     Each particle's force accumulator is cleared as it is read, as Cyclone's integrate ends with
     clearAccumulator: no separate pass clears it, and a force added to ``particles.force``
-    before a step acts in it (as ``addForce`` does in the book). The kinetic energy is summed
-    here because this pass reads every velocity anyway: a world
-    without contacts needs no second pass for ``StepStats.kinetic_energy`` (it cost as much as
-    the integration itself for free particles). The stores are written out here: an inlined
-    helper that stores into the arrays made numba's serial loop 3× slower (measured 49
-    against 16 ns a particle). Non-finite values are caught by one sum of everything stored,
-    tested once: a per-particle test cost 1–2 ns of 11 (an overflow of the sum alone only
-    costs a rescan that finds nothing)."""
-    start, stop = int(out[0]), int(out[1])
+    before a step acts in it (as ``addForce`` does in the book). The stores are written out
+    here: an inlined helper that stores into the arrays made numba's serial loop 3× slower
+    (measured 49 against 16 ns a particle). Non-finite values are caught by one sum of the
+    new positions, tested once (a non-finite velocity makes its position non-finite: dt > 0):
+    a per-particle test cost 1–2 ns of 11; an overflow of the sum alone only costs a rescan
+    that finds nothing. The kinetic energy is not summed here: in this loop it cost 2.3 ns a
+    particle of 11.7, as a pass of its own 1.5 (``Particles.kinetic_energy``, measured on
+    8192 particles, one thread), and a world with contacts needs it after the solver anyway."""
     gx, gy, gz = g[0], g[1], g[2]
-    energy = 0.0
     probe = 0.0
     for i in range(start, stop):
-        w = inv_mass[i]
         px, py, pz, vx, vy, vz, ax, ay, az = _integrate_particle(
             pos[i, 0], pos[i, 1], pos[i, 2], vel[i, 0], vel[i, 1], vel[i, 2],
-            force[i, 0], force[i, 1], force[i, 2], w, damping[i], gx, gy, gz, k1, k2, dt)
+            force[i, 0], force[i, 1], force[i, 2], inv_mass[i], damping[i], gx, gy, gz,
+            k1, k2, dt)
         pos[i, 0] = px
         pos[i, 1] = py
         pos[i, 2] = pz
@@ -141,39 +135,24 @@ def _integrate(pos, vel, force, acc, inv_mass, damping, g, k1, k2, dt, store_acc
         force[i, 0] = 0.0  # the accumulator is consumed (Cyclone's clearAccumulator)
         force[i, 1] = 0.0
         force[i, 2] = 0.0
-        if w > 0.0:
-            energy += (vx * vx + vy * vy + vz * vz) / w
-        probe += px + py + pz + vx + vy + vz
-    out[2] = -1 if math.isfinite(probe) else _first_not_finite(pos, vel, start, stop)
-    out[3] = 0.5 * energy
-
-
-#: Particles per chunk of the parallel integration. Chunks, not threads, split the work, so
-#: the energy sum adds the same numbers in the same order whatever the thread count.
-CHUNK = 8192
+        probe += px + py + pz
+    return -1 if math.isfinite(probe) else _first_not_finite(pos, vel, start, stop)
 
 
 @njit(cache=True, nogil=True, parallel=True)
 def _integrate_parallel(pos, vel, force, acc, inv_mass, damping, g, k1, k2, dt, store_acc,
-                        out):
-    """``_integrate`` on all cores, one chunk of ``CHUNK`` particles per task; the chunks'
-    results are combined in chunk order (deterministic for any thread count)."""
-    n = pos.shape[0]
-    chunks = (n + CHUNK - 1) // CHUNK
-    parts = np.empty((chunks, 4))
+                        start, stop):
+    """``_integrate`` on all cores, one chunk of ``CHUNK`` particles per task; the first
+    non-finite particle is the first in chunk order (the same for any thread count)."""
+    chunks = (stop - start + CHUNK - 1) // CHUNK
+    bad = np.empty(chunks, np.int64)
     for c in prange(chunks):
-        parts[c, 0] = c * CHUNK
-        parts[c, 1] = min(n, (c + 1) * CHUNK)
-        _integrate(pos, vel, force, acc, inv_mass, damping, g, k1, k2, dt, store_acc,
-                   parts[c])
-    bad = -1
-    energy = 0.0
+        bad[c] = _integrate(pos, vel, force, acc, inv_mass, damping, g, k1, k2, dt, store_acc,
+                            start + c * CHUNK, min(stop, start + (c + 1) * CHUNK))
     for c in range(chunks):
-        if bad < 0 and parts[c, 2] >= 0:
-            bad = parts[c, 2]
-        energy += parts[c, 3]
-    out[2] = bad
-    out[3] = energy
+        if bad[c] >= 0:
+            return bad[c]
+    return -1
 
 
 class World:
@@ -216,8 +195,6 @@ class World:
         #: defaults are ``add_body``'s, so a particle meets a body as a default body would.
         self.particle_friction = 0.5
         self.particle_restitution = 0.0
-        #: Whether the body stage changed particle velocities in the step being taken.
-        self._particles_touched = False
         self.forces: list[ForceGenerator] = []
         #: Rigid-body force generators (``pointmass.rigid.forces``), applied before the kick.
         self.body_forces: list[BodyForceGenerator] = []
@@ -238,9 +215,6 @@ class World:
         #: The particle count that every generator was last validated against.
         self._checked_count = 0
         self._checked_bodies = 0  # the same for bodies and the body force generators
-        #: The integration's range, first non-finite particle and kinetic energy (one array,
-        #: reused, so a tiny world's step allocates nothing for it).
-        self._integrated = np.zeros(4)
         self._jump_check = False
         #: This step's generators, split by ``forces.fold``: (those that add to the
         #: accumulator, gravity + the folded accelerations, drag k1, k2).
@@ -436,7 +410,6 @@ class World:
                  self.bodies.snapshot(), self.body_impulses.snapshot()) \
             if self._substeps > 1 else None
         iterations = velocity_passes = position_passes = 0
-        self._particles_touched = False
         try:
             for _ in range(self._substeps):
                 solved = self._substep(h)
@@ -455,11 +428,7 @@ class World:
         if self.bodies.count:
             self.bodies.clear_accumulators()  # user forces and torques last one step
         pen = self.contacts.penetration
-        # The integration summed the kinetic energy; only the solver changes velocities after
-        # it, so a second pass is needed only when there were contacts to solve.
-        energy = (self.particles.kinetic_energy()
-                  if self.contacts.count or self._particles_touched
-                  else float(self._integrated[3]))
+        energy = self.particles.kinetic_energy()
         if self.bodies.count:
             energy += self.bodies.kinetic_energy()
         deepest = float(pen.max()) if pen.size and pen.max() > 0 else 0.0
@@ -498,12 +467,9 @@ class World:
         # The acceleration is stored only where it is read: the resting-contact test of the
         # particle solver and of the body stage.
         integrate = _integrate_parallel if p.count >= PARALLEL_MIN_PARTICLES else _integrate
-        out = self._integrated
-        out[0], out[1] = 0.0, p.count
         store_acc = bool(self.contact_generators) or self.bodies.count > 0
-        integrate(p.position, p.velocity, p.force, p.acceleration, p.inv_mass, p.damping,
-                  g, k1, k2, dt, store_acc, out)
-        bad = int(out[2])
+        bad = integrate(p.position, p.velocity, p.force, p.acceleration, p.inv_mass, p.damping,
+                        g, k1, k2, dt, store_acc, 0, p.count)
         if bad >= 0:
             raise FloatingPointError(
                 f"particle {bad} became non-finite at t = {self.time:.6g} s "
@@ -559,7 +525,6 @@ class World:
         if packed is None:
             rows = self.solver.solve_bodies(b, self.body_contacts, acc, self.body_impulses, dt)
         else:
-            self._particles_touched = True
             acc = np.concatenate([acc, p.acceleration[packed.selected]])
             rows = self.solver.solve_bodies(packed, self.body_contacts, acc,
                                             self.body_impulses, dt)
