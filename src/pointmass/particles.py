@@ -215,7 +215,7 @@ class Particles:
 
 
 @njit(cache=True, nogil=True)
-def _energy_chunk(velocity, inv_mass, start, stop):
+def energy_chunk(velocity, inv_mass, start, stop):
     """Σ |v|²/w over the movable particles ``start`` to ``stop`` (no temporaries)."""
     total = 0.0
     for i in range(start, stop):
@@ -233,7 +233,7 @@ def _kinetic_energy(velocity, inv_mass):
     n = velocity.shape[0]
     total = 0.0
     for start in range(0, n, CHUNK):
-        total += _energy_chunk(velocity, inv_mass, start, min(n, start + CHUNK))
+        total += energy_chunk(velocity, inv_mass, start, min(n, start + CHUNK))
     return 0.5 * total
 
 
@@ -244,7 +244,7 @@ def _kinetic_energy_parallel(velocity, inv_mass):
     chunks = (n + CHUNK - 1) // CHUNK
     parts = np.empty(chunks)
     for c in prange(chunks):
-        parts[c] = _energy_chunk(velocity, inv_mass, c * CHUNK, min(n, (c + 1) * CHUNK))
+        parts[c] = energy_chunk(velocity, inv_mass, c * CHUNK, min(n, (c + 1) * CHUNK))
     total = 0.0
     for c in range(chunks):
         total += parts[c]

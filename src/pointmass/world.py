@@ -12,7 +12,7 @@ from . import _validate as check
 from .collide import Plane
 from .contacts import ContactBuffer, ContactGenerator, friction_value, restitution_value
 from .forces import ForceGenerator, drag_force, fold
-from .particles import CHUNK, PARALLEL_MIN_PARTICLES, Particles
+from .particles import CHUNK, PARALLEL_MIN_PARTICLES, Particles, energy_chunk
 from .rigid.bodies import Bodies, Body
 from .rigid.collide import generate as generate_body_contacts
 from .rigid.contacts import BodyContacts
@@ -141,18 +141,34 @@ def _integrate(pos, vel, force, acc, inv_mass, damping, g, k1, k2, dt, store_acc
 
 @njit(cache=True, nogil=True, parallel=True)
 def _integrate_parallel(pos, vel, force, acc, inv_mass, damping, g, k1, k2, dt, store_acc,
-                        start, stop):
-    """``_integrate`` on all cores, one chunk of ``CHUNK`` particles per task; the first
-    non-finite particle is the first in chunk order (the same for any thread count)."""
-    chunks = (stop - start + CHUNK - 1) // CHUNK
+                        final):
+    """``_integrate`` on all cores, one chunk of ``CHUNK`` particles per task; returns the
+    first non-finite particle in chunk order (the same for any thread count), or -1, and with
+    ``final`` (no stage after this one changes velocities) the kinetic energy [J], else 0.
+
+    The energy is summed by each task right after its chunk, while the chunk is in cache, in
+    the chunks of ``Particles.kinetic_energy`` and their order: the same bits, without a
+    second parallel region (each one waits for every thread; on a loaded machine that wait
+    dominated the energy pass)."""
+    n = pos.shape[0]
+    chunks = (n + CHUNK - 1) // CHUNK
     bad = np.empty(chunks, np.int64)
+    parts = np.zeros(chunks)
     for c in prange(chunks):
+        start, stop = c * CHUNK, min(n, (c + 1) * CHUNK)
         bad[c] = _integrate(pos, vel, force, acc, inv_mass, damping, g, k1, k2, dt, store_acc,
-                            start + c * CHUNK, min(stop, start + (c + 1) * CHUNK))
+                            start, stop)
+        if final:
+            parts[c] = energy_chunk(vel, inv_mass, start, stop)
+    first = -1
     for c in range(chunks):
         if bad[c] >= 0:
-            return bad[c]
-    return -1
+            first = bad[c]
+            break
+    total = 0.0
+    for c in range(chunks):
+        total += parts[c]
+    return first, 0.5 * total
 
 
 class World:
@@ -216,6 +232,8 @@ class World:
         self._checked_count = 0
         self._checked_bodies = 0  # the same for bodies and the body force generators
         self._jump_check = False
+        #: The particles' kinetic energy [J] summed by the last integration, or None.
+        self._energy = None
         #: This step's generators, split by ``forces.fold``: (those that add to the
         #: accumulator, gravity + the folded accelerations, drag k1, k2).
         self._folded = ([], self._gravity, 0.0, 0.0)
@@ -428,7 +446,8 @@ class World:
         if self.bodies.count:
             self.bodies.clear_accumulators()  # user forces and torques last one step
         pen = self.contacts.penetration
-        energy = self.particles.kinetic_energy()
+        energy = (self.particles.kinetic_energy() if self._energy is None
+                  else self._energy)
         if self.bodies.count:
             energy += self.bodies.kinetic_energy()
         deepest = float(pen.max()) if pen.size and pen.max() > 0 else 0.0
@@ -466,10 +485,18 @@ class World:
         # Integrate: v += a·dt, then p += v·dt (semi-implicit Euler, the cookbook's order).
         # The acceleration is stored only where it is read: the resting-contact test of the
         # particle solver and of the body stage.
-        integrate = _integrate_parallel if p.count >= PARALLEL_MIN_PARTICLES else _integrate
-        store_acc = bool(self.contact_generators) or self.bodies.count > 0
-        bad = integrate(p.position, p.velocity, p.force, p.acceleration, p.inv_mass, p.damping,
-                        g, k1, k2, dt, store_acc, 0, p.count)
+        # Without contact generators and bodies nothing changes velocities after this (and
+        # nothing reads the acceleration): the parallel integration sums the kinetic energy.
+        after = bool(self.contact_generators) or self.bodies.count > 0
+        args = (p.position, p.velocity, p.force, p.acceleration, p.inv_mass, p.damping, g, k1,
+                k2, dt, after)
+        self._energy = None
+        if p.count >= PARALLEL_MIN_PARTICLES:
+            bad, energy = _integrate_parallel(*args, not after)
+            if not after:
+                self._energy = energy
+        else:
+            bad = _integrate(*args, 0, p.count)
         if bad >= 0:
             raise FloatingPointError(
                 f"particle {bad} became non-finite at t = {self.time:.6g} s "
