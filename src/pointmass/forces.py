@@ -7,14 +7,20 @@ including particles added later. Springs live in ``springs.py``.
 To write your own fast generator, subclass ``ForceGenerator`` and add to ``particles.force``
 with numpy or numba. ``CustomForce`` takes a cookbook-style ``lambda particle: force`` instead:
 convenient, but a Python call per particle per step (the slow path).
+
+Gravity and drag on every particle are pure per-particle functions of the velocity: the world
+folds them into its integration kernel (``ForceGenerator.fused_terms``, ``fold``) instead of
+running a pass that writes the accumulator for the integration to read back. The forces are the
+same; only where they are computed changes (free particles: one pass over memory, not two).
 """
 
 from __future__ import annotations
 
 from collections.abc import Callable
+from typing import NamedTuple
 
 import numpy as np
-from numba import njit, prange
+from numba import njit
 
 from . import _validate as check
 from .particles import Particle, Particles
@@ -33,6 +39,13 @@ class ForceGenerator:
     def apply(self, particles: Particles, dt: float) -> None:
         raise NotImplementedError
 
+    def fused_terms(self) -> FusedTerms | None:
+        """What this generator adds to every movable particle, as terms the integration kernel
+        evaluates itself (then the world does not call ``apply``); None (the default) when its
+        forces must go through the accumulator. Only a generator acting on all particles
+        whose force is a per-particle function of mass and velocity can say so."""
+        return None
+
     def validate(self, particles: Particles) -> None:
         """Check particle indices when added to a world (raise naming the bad parameter)."""
 
@@ -43,6 +56,44 @@ class ForceGenerator:
     def segments(self, particles: Particles) -> tuple[np.ndarray, np.ndarray, np.ndarray] | None:
         """Line segments a renderer may draw: (start (K,3), end (K,3), strain (K,)) or None."""
         return None
+
+
+class FusedTerms(NamedTuple):
+    """Forces the integration kernel computes itself, on every movable particle:
+    a = acceleration + (F_accumulated - (k1 + k2·|v|)·v) / m, from the velocity before the step
+    (as a generator applied before the integration sees it)."""
+
+    #: A uniform acceleration [m/s²], shape (3,) (gravity: F = m·g), or None.
+    acceleration: np.ndarray | None = None
+    #: Linear drag coefficient [N·s/m].
+    k1: float = 0.0
+    #: Quadratic drag coefficient [N·s²/m²].
+    k2: float = 0.0
+
+
+def fold(generators, gravity: np.ndarray) -> tuple[list, np.ndarray, float, float]:
+    """Split ``generators`` into those that add to the accumulator and those the integration
+    takes over; returns (the former, gravity + their accelerations [m/s²] (3,), Σ k1, Σ k2)."""
+    if not generators:
+        return generators, gravity, 0.0, 0.0
+    accumulating = []
+    g, k1, k2 = gravity, 0.0, 0.0
+    for generator in generators:
+        terms = generator.fused_terms()
+        if terms is None:
+            accumulating.append(generator)
+        else:
+            if terms.acceleration is not None:
+                g = g + terms.acceleration
+            k1 += terms.k1
+            k2 += terms.k2
+    return accumulating, g, k1, k2
+
+
+def _own_apply(generator, cls) -> bool:
+    """Whether ``generator`` applies forces as ``cls`` does (a subclass that overrides ``apply``
+    is not fused: its forces go through the accumulator, as it wrote them)."""
+    return type(generator).apply is cls.apply
 
 
 class _Selection:
@@ -102,6 +153,11 @@ class Gravity(ForceGenerator):
     def apply(self, particles: Particles, dt: float) -> None:
         _gravity_kernel(particles.force, particles.inv_mass, self._sel.indices(particles), self.g)
 
+    def fused_terms(self) -> FusedTerms | None:
+        if self._sel._given is None and _own_apply(self, Gravity):
+            return FusedTerms(self.g)
+        return None
+
     def potential_energy(self, particles: Particles) -> float:
         idx = self._sel.indices(particles)
         w = particles.inv_mass[idx]
@@ -111,32 +167,22 @@ class Gravity(ForceGenerator):
 
 
 @njit(cache=True, inline="always")
-def _drag_particle(force, velocity, i, k1, k2):
-    vx, vy, vz = velocity[i, 0], velocity[i, 1], velocity[i, 2]
-    speed = np.sqrt(vx * vx + vy * vy + vz * vz)
-    if speed > 0.0:
-        # |F| = k1·|v| + k2·|v|², against v: F = -(k1 + k2·|v|)·v
-        c = k1 + k2 * speed
-        force[i, 0] -= c * vx
-        force[i, 1] -= c * vy
-        force[i, 2] -= c * vz
+def drag_force(vx, vy, vz, k1, k2):
+    """The cookbook's drag on velocity (vx, vy, vz) [m/s]: |F| = k1·|v| + k2·|v|² against v,
+    i.e. F = -(k1 + k2·|v|)·v [N]. A pure function of scalars, shared by the generator's
+    kernel and the integration kernel that fuses it (one formula, the same bits)."""
+    c = k1 + k2 * np.sqrt(vx * vx + vy * vy + vz * vz)
+    return -c * vx, -c * vy, -c * vz
 
 
 @njit(cache=True, nogil=True)
 def _drag_kernel(force, velocity, idx, k1, k2):
     for k in range(idx.shape[0]):
-        _drag_particle(force, velocity, idx[k], k1, k2)
-
-
-#: Below this many particles drag runs on one core (threads cost more than they save).
-PARALLEL_MIN_PARTICLES = 50_000
-
-
-@njit(cache=True, nogil=True, parallel=True)
-def _drag_all_kernel(force, velocity, k1, k2):
-    """Drag on every particle: each row once, so the rows can run on all cores."""
-    for i in prange(velocity.shape[0]):
-        _drag_particle(force, velocity, i, k1, k2)
+        i = idx[k]
+        fx, fy, fz = drag_force(velocity[i, 0], velocity[i, 1], velocity[i, 2], k1, k2)
+        force[i, 0] += fx
+        force[i, 1] += fy
+        force[i, 2] += fz
 
 
 class Drag(ForceGenerator):
@@ -170,12 +216,14 @@ class Drag(ForceGenerator):
         self._sel.validate(particles)
 
     def apply(self, particles: Particles, dt: float) -> None:
-        if self._sel._given is None and particles.count >= PARALLEL_MIN_PARTICLES:
-            # Every particle once (no repeats), and enough of them to be worth the threads.
-            _drag_all_kernel(particles.force, particles.velocity, self._k1, self._k2)
-        else:  # given indices may repeat: one thread
-            _drag_kernel(particles.force, particles.velocity, self._sel.indices(particles),
-                         self._k1, self._k2)
+        _drag_kernel(particles.force, particles.velocity, self._sel.indices(particles),
+                     self._k1, self._k2)
+
+    def fused_terms(self) -> FusedTerms | None:
+        # On every particle, the world computes it in the integration kernel (same formula).
+        if self._sel._given is None and _own_apply(self, Drag):
+            return FusedTerms(None, self._k1, self._k2)
+        return None
 
 
 @njit(cache=True, nogil=True)

@@ -11,8 +11,8 @@ from numba import njit, prange
 from . import _validate as check
 from .collide import Plane
 from .contacts import ContactBuffer, ContactGenerator, friction_value, restitution_value
-from .forces import ForceGenerator
-from .particles import Particles
+from .forces import ForceGenerator, drag_force, fold
+from .particles import CHUNK, PARALLEL_MIN_PARTICLES, Particles, energy_chunk
 from .rigid.bodies import Bodies, Body
 from .rigid.collide import generate as generate_body_contacts
 from .rigid.contacts import BodyContacts
@@ -50,100 +50,125 @@ class StepStats:
     body_contacts: int = 0
 
 
-#: Below this many particles the integration runs on one core: starting threads costs more
-#: than it saves (measured ~2 ms per call on a busy 2-core machine, against microseconds).
-PARALLEL_MIN_PARTICLES = 50_000
 
 
 @njit(cache=True, inline="always")
-def _integrate_particle(px, py, pz, vx, vy, vz, fx, fy, fz, w, d, g, dt):
+def _integrate_particle(px, py, pz, vx, vy, vz, fx, fy, fz, w, d, gx, gy, gz, k1, k2, dt):
     """Semi-implicit Euler for one particle, in the cookbook's order: v += a·dt, v *= d^dt,
-    p += v·dt, from its position, velocity and force, inverse mass w and damping d. Immovable
-    particles (w = 0) get no acceleration but keep moving with whatever velocity they were
-    given (kinematic). Returns the new position, velocity and acceleration (9 numbers).
+    p += v·dt, from its position, velocity and accumulated force, inverse mass w and damping d.
+    The folded generators (``forces.fold``) act here: the uniform acceleration g and the
+    drag of coefficients k1, k2 on the velocity before the step, as if added to the force.
+    Immovable particles (w = 0) get no acceleration but keep moving with whatever velocity they
+    were given (kinematic). Returns the new position, velocity and acceleration (9 numbers).
 
     A pure function of scalars: the driver loads and stores. (As a helper that stored into the
     arrays itself, numba compiled the serial loop at 71 ns a particle, against 4.5 ns for the
-    same helper in the parallel loop on one thread.)
+    same helper in the parallel loop on one thread; given g as an array, whose loads the
+    stores may alias, 39 ns against 18.)
     """
     ax = 0.0
     ay = 0.0
     az = 0.0
     if w > 0.0:
-        ax = g[0] + fx * w
-        ay = g[1] + fy * w
-        az = g[2] + fz * w
-        keep = d**dt if d < 1.0 else 1.0
-        vx = (vx + ax * dt) * keep
-        vy = (vy + ay * dt) * keep
-        vz = (vz + az * dt) * keep
+        if k1 != 0.0 or k2 != 0.0:  # the same for every particle: a branch never mispredicted
+            dx, dy, dz = drag_force(vx, vy, vz, k1, k2)
+            fx += dx
+            fy += dy
+            fz += dz
+        ax = gx + fx * w
+        ay = gy + fy * w
+        az = gz + fz * w
+        vx += ax * dt
+        vy += ay * dt
+        vz += az * dt
+        if d < 1.0:  # no multiply by 1 for the undamped (1 ns of 11 a particle, measured)
+            keep = d**dt
+            vx *= keep
+            vy *= keep
+            vz *= keep
     return px + vx * dt, py + vy * dt, pz + vz * dt, vx, vy, vz, ax, ay, az
 
 
 @njit(cache=True, nogil=True)
-def _integrate(pos, vel, force, acc, inv_mass, damping, g, dt, out):
-    """Integrate particles ``out[0]`` to ``out[1]`` (a chunk); stores into ``out[2]`` the first
-    that is not finite (or -1) and into ``out[3]`` their kinetic energy after the step.
+def _first_not_finite(pos, vel, start, stop):
+    """The first particle in [start, stop) with a non-finite position or velocity, or -1."""
+    for i in range(start, stop):
+        if not math.isfinite(pos[i, 0] + pos[i, 1] + pos[i, 2]
+                             + vel[i, 0] + vel[i, 1] + vel[i, 2]):
+            return i
+    return -1
+
+
+@njit(cache=True, nogil=True)
+def _integrate(pos, vel, force, acc, inv_mass, damping, g, k1, k2, dt, store_acc, start, stop):
+    """Integrate particles ``start`` to ``stop`` (a chunk); returns the first that is not
+    finite afterwards, or -1. The acceleration is stored only with ``store_acc`` (when
+    something reads it: the solver's resting-contact test).
 
     Each particle's force accumulator is cleared as it is read, as Cyclone's integrate ends with
     clearAccumulator: no separate pass clears it, and a force added to ``particles.force``
-    before a step acts in it (as ``addForce`` does in the book). The kinetic energy is summed
-    here because this pass reads every velocity anyway: a world
-    without contacts needs no second pass for ``StepStats.kinetic_energy`` (it cost as much as
-    the integration itself for free particles). The stores are written out here: an inlined
-    helper that stores into the arrays made numba's serial loop 3× slower (measured 49
-    against 16 ns a particle). One test of the sum catches any non-finite value."""
-    bad = -1
-    energy = 0.0
-    for i in range(int(out[0]), int(out[1])):
-        w = inv_mass[i]
+    before a step acts in it (as ``addForce`` does in the book). The stores are written out
+    here: an inlined helper that stores into the arrays made numba's serial loop 3× slower
+    (measured 49 against 16 ns a particle). Non-finite values are caught by one sum of the
+    new positions, tested once (a non-finite velocity makes its position non-finite: dt > 0):
+    a per-particle test cost 1–2 ns of 11; an overflow of the sum alone only costs a rescan
+    that finds nothing. The kinetic energy is not summed here: in this loop it cost 2.3 ns a
+    particle of 11.7, as a pass of its own 1.5 (``Particles.kinetic_energy``, measured on
+    8192 particles, one thread), and a world with contacts needs it after the solver anyway."""
+    gx, gy, gz = g[0], g[1], g[2]
+    probe = 0.0
+    for i in range(start, stop):
         px, py, pz, vx, vy, vz, ax, ay, az = _integrate_particle(
             pos[i, 0], pos[i, 1], pos[i, 2], vel[i, 0], vel[i, 1], vel[i, 2],
-            force[i, 0], force[i, 1], force[i, 2], w, damping[i], g, dt)
+            force[i, 0], force[i, 1], force[i, 2], inv_mass[i], damping[i], gx, gy, gz,
+            k1, k2, dt)
         pos[i, 0] = px
         pos[i, 1] = py
         pos[i, 2] = pz
         vel[i, 0] = vx
         vel[i, 1] = vy
         vel[i, 2] = vz
-        acc[i, 0] = ax
-        acc[i, 1] = ay
-        acc[i, 2] = az
+        if store_acc:
+            acc[i, 0] = ax
+            acc[i, 1] = ay
+            acc[i, 2] = az
         force[i, 0] = 0.0  # the accumulator is consumed (Cyclone's clearAccumulator)
         force[i, 1] = 0.0
         force[i, 2] = 0.0
-        if w > 0.0:
-            energy += (vx * vx + vy * vy + vz * vz) / w
-        if bad < 0 and not math.isfinite(px + py + pz + vx + vy + vz):
-            bad = i
-    out[2] = bad
-    out[3] = 0.5 * energy
-
-
-#: Particles per chunk of the parallel integration. Chunks, not threads, split the work, so
-#: the energy sum adds the same numbers in the same order whatever the thread count.
-CHUNK = 8192
+        probe += px + py + pz
+    return -1 if math.isfinite(probe) else _first_not_finite(pos, vel, start, stop)
 
 
 @njit(cache=True, nogil=True, parallel=True)
-def _integrate_parallel(pos, vel, force, acc, inv_mass, damping, g, dt, out):
-    """``_integrate`` on all cores, one chunk of ``CHUNK`` particles per task; the chunks'
-    results are combined in chunk order (deterministic for any thread count)."""
+def _integrate_parallel(pos, vel, force, acc, inv_mass, damping, g, k1, k2, dt, store_acc,
+                        final):
+    """``_integrate`` on all cores, one chunk of ``CHUNK`` particles per task; returns the
+    first non-finite particle in chunk order (the same for any thread count), or -1, and with
+    ``final`` (no stage after this one changes velocities) the kinetic energy [J], else 0.
+
+    The energy is summed by each task right after its chunk, while the chunk is in cache, in
+    the chunks of ``Particles.kinetic_energy`` and their order: the same bits, without a
+    second parallel region (each one waits for every thread; on a loaded machine that wait
+    dominated the energy pass)."""
     n = pos.shape[0]
     chunks = (n + CHUNK - 1) // CHUNK
-    parts = np.empty((chunks, 4))
+    bad = np.empty(chunks, np.int64)
+    parts = np.zeros(chunks)
     for c in prange(chunks):
-        parts[c, 0] = c * CHUNK
-        parts[c, 1] = min(n, (c + 1) * CHUNK)
-        _integrate(pos, vel, force, acc, inv_mass, damping, g, dt, parts[c])
-    bad = -1
-    energy = 0.0
+        start, stop = c * CHUNK, min(n, (c + 1) * CHUNK)
+        bad[c] = _integrate(pos, vel, force, acc, inv_mass, damping, g, k1, k2, dt, store_acc,
+                            start, stop)
+        if final:
+            parts[c] = energy_chunk(vel, inv_mass, start, stop)
+    first = -1
     for c in range(chunks):
-        if bad < 0 and parts[c, 2] >= 0:
-            bad = parts[c, 2]
-        energy += parts[c, 3]
-    out[2] = bad
-    out[3] = energy
+        if bad[c] >= 0:
+            first = bad[c]
+            break
+    total = 0.0
+    for c in range(chunks):
+        total += parts[c]
+    return first, 0.5 * total
 
 
 class World:
@@ -186,8 +211,6 @@ class World:
         #: defaults are ``add_body``'s, so a particle meets a body as a default body would.
         self.particle_friction = 0.5
         self.particle_restitution = 0.0
-        #: Whether the body stage changed particle velocities in the step being taken.
-        self._particles_touched = False
         self.forces: list[ForceGenerator] = []
         #: Rigid-body force generators (``pointmass.rigid.forces``), applied before the kick.
         self.body_forces: list[BodyForceGenerator] = []
@@ -208,10 +231,12 @@ class World:
         #: The particle count that every generator was last validated against.
         self._checked_count = 0
         self._checked_bodies = 0  # the same for bodies and the body force generators
-        #: The integration's range, first non-finite particle and kinetic energy (one array,
-        #: reused, so a tiny world's step allocates nothing for it).
-        self._integrated = np.zeros(4)
         self._jump_check = False
+        #: The particles' kinetic energy [J] summed by the last integration, or None.
+        self._energy = None
+        #: This step's generators, split by ``forces.fold``: (those that add to the
+        #: accumulator, gravity + the folded accelerations, drag k1, k2).
+        self._folded = ([], self._gravity, 0.0, 0.0)
 
     # -- settings, checked on assignment --------------------------------------------------------
     @property
@@ -397,12 +422,12 @@ class World:
         # stiffness against the step, user forces the velocity change they would cause), so
         # the world stays as it was and the user can go on with a smaller dt. With substeps,
         # the earlier substeps are undone from a copy.
-        self._jump_check = needs_jump_check(self.forces)
+        self._folded = fold(self.forces, self._gravity)
+        self._jump_check = needs_jump_check(self._folded[0])
         saved = (self.particles.snapshot(), self.time, self.impulses.snapshot(),
                  self.bodies.snapshot(), self.body_impulses.snapshot()) \
             if self._substeps > 1 else None
         iterations = velocity_passes = position_passes = 0
-        self._particles_touched = False
         try:
             for _ in range(self._substeps):
                 solved = self._substep(h)
@@ -418,13 +443,11 @@ class World:
                 self.body_impulses.restore(saved[4])
             raise
         self.time += float(dt)
-        self.bodies.clear_accumulators()  # user forces and torques last one step
+        if self.bodies.count:
+            self.bodies.clear_accumulators()  # user forces and torques last one step
         pen = self.contacts.penetration
-        # The integration summed the kinetic energy; only the solver changes velocities after
-        # it, so a second pass is needed only when there were contacts to solve.
-        energy = (self.particles.kinetic_energy()
-                  if self.contacts.count or self._particles_touched
-                  else float(self._integrated[3]))
+        energy = (self.particles.kinetic_energy() if self._energy is None
+                  else self._energy)
         if self.bodies.count:
             energy += self.bodies.kinetic_energy()
         deepest = float(pen.max()) if pen.size and pen.max() > 0 else 0.0
@@ -447,23 +470,33 @@ class World:
         p = self.particles
 
         # Let every force generator add its forces to the accumulators (which hold whatever
-        # the user added since the last step; the integration reads and clears them).
+        # the user added since the last step; the integration reads and clears them). Gravity
+        # and drag on all particles are folded into the integration instead (forces.fold).
+        accumulating, g, k1, k2 = self._folded
         try:
-            for generator in self.forces:
+            for generator in accumulating:
                 generator.apply(p, dt)
             if self._jump_check:  # user forces: refuse a step that would throw a particle
-                jump_check(self.forces, p, self._gravity, dt)
+                jump_check(accumulating, p, g, dt)
         except BaseException:
             p.force[:] = 0.0  # a refused step leaves no half-accumulated forces behind
             raise
 
         # Integrate: v += a·dt, then p += v·dt (semi-implicit Euler, the cookbook's order).
-        integrate = _integrate_parallel if p.count >= PARALLEL_MIN_PARTICLES else _integrate
-        out = self._integrated
-        out[0], out[1] = 0.0, p.count
-        integrate(p.position, p.velocity, p.force, p.acceleration, p.inv_mass, p.damping,
-                  self._gravity, dt, out)
-        bad = int(out[2])
+        # The acceleration is stored only where it is read: the resting-contact test of the
+        # particle solver and of the body stage.
+        # Without contact generators and bodies nothing changes velocities after this (and
+        # nothing reads the acceleration): the parallel integration sums the kinetic energy.
+        after = bool(self.contact_generators) or self.bodies.count > 0
+        args = (p.position, p.velocity, p.force, p.acceleration, p.inv_mass, p.damping, g, k1,
+                k2, dt, after)
+        self._energy = None
+        if p.count >= PARALLEL_MIN_PARTICLES:
+            bad, energy = _integrate_parallel(*args, not after)
+            if not after:
+                self._energy = energy
+        else:
+            bad = _integrate(*args, 0, p.count)
         if bad >= 0:
             raise FloatingPointError(
                 f"particle {bad} became non-finite at t = {self.time:.6g} s "
@@ -519,7 +552,6 @@ class World:
         if packed is None:
             rows = self.solver.solve_bodies(b, self.body_contacts, acc, self.body_impulses, dt)
         else:
-            self._particles_touched = True
             acc = np.concatenate([acc, p.acceleration[packed.selected]])
             rows = self.solver.solve_bodies(packed, self.body_contacts, acc,
                                             self.body_impulses, dt)
