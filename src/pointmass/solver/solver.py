@@ -35,10 +35,10 @@ import numpy as np
 
 from ..contacts import ContactBuffer
 from ..particles import Particles
-from . import body_solver, coloured, direct, stages
-from .colouring import colour_rows
+from . import body_solver, direct, parallel, stages
 from .history import ImpulseHistory
 from .kernels import Bodies, ContactSet
+from .partition import block_rows
 
 MODES = ("sequential", "worst-first")
 #: Older names accepted for the default mode (the resolver's "auto" and "sweep").
@@ -56,8 +56,9 @@ MAX_IMPACT_PASSES = 8
 MAX_PROJECTION_PASSES = 15
 #: A small contact set still unconverged after this many passes gets the exact solve.
 DIRECT_AFTER_PASSES = 10
-#: From this many contacts on, the velocity and projection passes run colour by colour on
-#: every core (``colouring.py``, ``coloured.py``); below, in row order on one.
+#: From this many contacts on, the velocity and projection passes run on every core, block by
+#: block (``partition.py``, ``parallel.py``); below, in row order on one. The choice depends
+#: on the contacts only, never on the threads, so any thread count gives the same bits.
 PARALLEL_MIN_CONTACTS = 20_000
 
 
@@ -146,14 +147,14 @@ class Solver:
     def _sequential(self, p, bod, con, contacts, history, dt) -> SolveStats:
         threshold = float(self.restitution_threshold)
         history.recall(contacts.key, con.impulse, con.tangent)
-        colours = colour_rows(con.a, con.b, p.count) if contacts.count >= PARALLEL_MIN_CONTACTS \
-            else None
+        blocks = block_rows(con.a, con.b, p.position) \
+            if contacts.count >= PARALLEL_MIN_CONTACTS else None
         impact_passes, hits = stages.impacts(bod, con, dt, threshold, IMPACT_TOLERANCE,
                                              MAX_IMPACT_PASSES)
         passes = MAX_VELOCITY_PASSES if self.max_passes is None else int(self.max_passes)
         before = (p.kinetic_energy(), p.velocity.copy(), p.position.copy(), bod.disp.copy())
         stages.warm_start(bod, con, dt)
-        velocity_passes, used = self._velocities(bod, con, dt, passes, colours)
+        velocity_passes, used = self._velocities(bod, con, dt, passes, blocks)
         cold = p.kinetic_energy() > before[0] * (1.0 + 1e-9) + 1e-15
         if cold:  # the warm start added energy that the passes did not take back: redo cold
             p.velocity[:] = before[1]
@@ -161,11 +162,11 @@ class Solver:
             bod.disp[:] = before[3]
             con.impulse[:] = 0.0
             con.tangent[:] = 0.0
-            more, used2 = self._velocities(bod, con, dt, passes, colours)
+            more, used2 = self._velocities(bod, con, dt, passes, blocks)
             velocity_passes += more
             used += used2
         stages.follow_impulses(bod, con, dt)
-        position_passes = self._positions(bod, con, PROJECTION_TOLERANCE * dt, colours)
+        position_passes = self._positions(bod, con, PROJECTION_TOLERANCE * dt, blocks)
         history.keep(contacts.key, con.impulse,
                      con.tangent if contacts.friction.any() else None)
         return SolveStats(contacts=contacts.count, impact_passes=int(impact_passes),
@@ -174,13 +175,13 @@ class Solver:
                           resolutions=int(hits + used), cold_restart=bool(cold))
 
     @staticmethod
-    def _velocities(bod, con, dt: float, passes: int, colours) -> tuple[int, int]:
+    def _velocities(bod, con, dt: float, passes: int, blocks) -> tuple[int, int]:
         """Gauss–Seidel passes; a small set still unconverged after ``DIRECT_AFTER_PASSES`` (a
         mass ratio) gets the exact solve (``direct.py``) and a few passes more for friction;
-        a large one with its ``colours`` runs them colour by colour on every core."""
-        if colours is not None:
-            return coloured.solve_velocities(bod, con, colours.order, colours.starts, dt,
-                                             VELOCITY_TOLERANCE, passes)
+        a large one split into ``blocks`` runs them on every core (``parallel.py``)."""
+        if blocks is not None:
+            return parallel.solve_velocities(bod, con, blocks.order, blocks.spans,
+                                             blocks.phase_starts, dt, VELOCITY_TOLERANCE, passes)
         small = con.a.shape[0] <= direct.DIRECT_MAX_CONTACTS
         first = min(passes, DIRECT_AFTER_PASSES) if small else passes
         done, used = stages.solve_velocities(bod, con, dt, VELOCITY_TOLERANCE, first)
@@ -192,12 +193,13 @@ class Solver:
         return done + more, used + used2 + con.a.shape[0]
 
     @staticmethod
-    def _positions(bod, con, tolerance: float, colours) -> int:
+    def _positions(bod, con, tolerance: float, blocks) -> int:
         """Projection passes, with the exact solve for a small set that does not converge
-        (colour by colour for a large set with ``colours``)."""
-        if colours is not None:
-            return coloured.project_positions(bod, con, colours.order, colours.starts,
-                                              tolerance, MAX_PROJECTION_PASSES)[0]
+        (on every core for a large set split into ``blocks``)."""
+        if blocks is not None:
+            return parallel.project_positions(bod, con, blocks.order, blocks.spans,
+                                              blocks.phase_starts, tolerance,
+                                              MAX_PROJECTION_PASSES)[0]
         small = con.a.shape[0] <= direct.DIRECT_MAX_CONTACTS
         first = min(DIRECT_AFTER_PASSES, MAX_PROJECTION_PASSES) if small \
             else MAX_PROJECTION_PASSES

@@ -22,7 +22,7 @@ from .kernels import (
     relative,
     slide,
 )
-from .sweeps import projection_rows_serial, velocity_rows_serial
+from .sweeps import projection_rows, velocity_rows
 
 
 @njit(cache=True, nogil=True)
@@ -141,7 +141,7 @@ def solve_velocities(bod, con, dt, tolerance, max_passes):
     used = 0
     while passes < max_passes:
         passes += 1
-        largest, hits = velocity_rows_serial(bod, con, None, 0, con.a.shape[0], dt)
+        largest, hits = velocity_rows(bod, con, None, 0, con.a.shape[0], dt)
         used += hits
         if largest <= tolerance:
             break
@@ -184,7 +184,7 @@ def project_positions(bod, con, tolerance, max_passes):
     largest = 0.0
     while passes < max_passes:
         passes += 1
-        largest = projection_rows_serial(bod, con, None, 0, con.a.shape[0])
+        largest = projection_rows(bod, con, None, 0, con.a.shape[0])
         if largest <= tolerance:
             break
     return passes, largest

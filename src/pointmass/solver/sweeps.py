@@ -1,12 +1,7 @@
-"""One Gauss–Seidel visit of a run of contact rows, written once and compiled twice.
-
-``velocity_rows`` and ``projection_rows`` visit ``rows[lo:hi]`` with ``prange`` (``rows`` None:
-the contacts lo..hi-1 themselves, with no indirection). Compiled plainly
-(``*_serial``) prange is range: the rows are visited in order, each seeing the velocities its
-predecessors left, which is Gauss–Seidel. Compiled with ``parallel=True`` (``*_parallel``) the
-rows are split between threads: right only when no two of them share a particle, which is what
-one colour of ``colouring.py`` guarantees. The largest change is a max and the count an integer
-sum, so both are exact whatever the split: the same bits for any number of threads.
+"""One Gauss–Seidel visit of a run of contact rows: ``rows[lo:hi]`` in order (``rows`` None:
+the contacts lo..hi-1 themselves, with no indirection), each row seeing the velocities its
+predecessors left. The serial sweep visits every row (``stages``); the parallel one visits
+one group of rows per thread, groups that share no particle (``partition.py``, ``parallel.py``).
 
 Each body is written into its loop rather than called per row: a per-row helper taking the
 arrays costs ~5× per contact visit even inlined (measured here: 505 against 148 ns a row on a
@@ -15,14 +10,13 @@ arrays costs ~5× per contact visit even inlined (measured here: 505 against 148
 
 from __future__ import annotations
 
-import types
-
-from numba import njit, prange
+from numba import njit
 
 from .kernels import PENETRATION_EPSILON, friction_accumulated, relative
 
 
-def _velocity_rows(bod, con, rows, lo, hi, dt):
+@njit(cache=True, nogil=True)
+def velocity_rows(bod, con, rows, lo, hi, dt):
     """Sequential impulses (Catto; box2d-lite's ``Arbiter::ApplyImpulse``) on rows[lo:hi]:
     each keeps an accumulated impulse clamped at ≥ 0 (contacts push, never pull, and a warm
     start that was too strong is taken back; a bilateral rod is not clamped), aiming at the
@@ -34,7 +28,7 @@ def _velocity_rows(bod, con, rows, lo, hi, dt):
     pos, vel, disp = bod.pos, bod.vel, bod.disp
     largest = 0.0
     used = 0
-    for r in prange(lo, hi):
+    for r in range(lo, hi):
         c = r if rows is None else rows[r]
         change = 0.0
         if k[c] != 0.0:
@@ -61,7 +55,8 @@ def _velocity_rows(bod, con, rows, lo, hi, dt):
     return largest, used
 
 
-def _projection_rows(bod, con, rows, lo, hi):
+@njit(cache=True, nogil=True)
+def projection_rows(bod, con, rows, lo, hi):
     """Mass-weighted projection on rows[lo:hi]: move each contact's particles apart along n by
     inverse mass until it no longer penetrates (a rod: until its length is right). Positions
     only. Returns the largest depth found [m]."""
@@ -69,7 +64,7 @@ def _projection_rows(bod, con, rows, lo, hi):
     bil = con.bil
     pos, disp = bod.pos, bod.disp
     largest = 0.0
-    for r in prange(lo, hi):
+    for r in range(lo, hi):
         c = r if rows is None else rows[r]
         d = depth0[c] - relative(disp, ca, cb, n, c)
         if k[c] != 0.0 and (d > PENETRATION_EPSILON
@@ -88,19 +83,3 @@ def _projection_rows(bod, con, rows, lo, hi):
                     disp[b, i] += move
     return largest
 
-
-def _twin(function, suffix: str):
-    """A copy of ``function`` under another name, so numba caches its two compilations apart."""
-    twin = types.FunctionType(function.__code__, function.__globals__,
-                              function.__name__ + suffix, function.__defaults__)
-    twin.__qualname__ = function.__qualname__ + suffix
-    twin.__doc__ = function.__doc__
-    return twin
-
-
-velocity_rows_serial = njit(cache=True, nogil=True)(_twin(_velocity_rows, "_serial"))
-velocity_rows_parallel = njit(cache=True, nogil=True, parallel=True)(
-    _twin(_velocity_rows, "_parallel"))
-projection_rows_serial = njit(cache=True, nogil=True)(_twin(_projection_rows, "_serial"))
-projection_rows_parallel = njit(cache=True, nogil=True, parallel=True)(
-    _twin(_projection_rows, "_parallel"))
