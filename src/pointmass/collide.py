@@ -259,27 +259,26 @@ def _sphere_pairs(pos, vel, radius, inv_mass, idx, cell_size, restitution, margi
     for k in range(n):
         i = idx[k]
         first = count
-        # Own cell (later particles only) and the 13 "forward" neighbour cells: each pair is
-        # met exactly once, from the particle in the lower cell (or the lower index).
+        # All 27 cells around, pairs with a higher index only: each pair is met exactly once,
+        # always as (lower, higher), so its key and its normal's direction do not change when
+        # the two spheres cross a cell boundary. (Met from the lower *cell*, as before, 9 % of
+        # a settled 10 000-sphere pit's contacts flipped every step, lost their warm start and
+        # with it 7 % of the pile's support.)
         for dx in range(-1, 2):
             for dy in range(-1, 2):
                 for dz in range(-1, 2):
-                    forward = dx > 0 or (dx == 0 and (dy > 0 or (dy == 0 and dz > 0)))
-                    own = dx == 0 and dy == 0 and dz == 0
-                    if not (forward or own):
-                        continue
                     cx = cells[k, 0] + dx
                     cy = cells[k, 1] + dy
                     cz = cells[k, 2] + dz
                     bucket = _cell_hash(cx, cy, cz, mask)
                     for s in range(starts[bucket], starts[bucket + 1]):
                         m = order[s]
-                        if own and m <= k:
+                        j = idx[m]
+                        if j <= i:
                             continue
                         # Another cell may share the bucket: only take this cell's particles.
                         if cells[m, 0] != cx or cells[m, 1] != cy or cells[m, 2] != cz:
                             continue
-                        j = idx[m]
                         if inv_mass[i] == 0.0 and inv_mass[j] == 0.0:
                             continue
                         ddx = pos[i, 0] - pos[j, 0]

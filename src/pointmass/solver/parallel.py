@@ -61,20 +61,22 @@ def solve_velocities(bod, con, order, spans, phases, dt, tolerance, max_passes):
 
 
 @njit(cache=True, nogil=True)
-def project_positions(bod, con, order, spans, phases, tolerance, max_passes):
-    """Projection passes phase by phase. Returns (passes, largest depth left)."""
+def project_positions(bod, con, order, spans, phases, tolerance, max_passes, stall):
+    """Projection passes phase by phase, stopping as ``stages.project_positions`` does.
+    Returns (passes, largest depth left)."""
     passes = 0
     largest = 0.0
     while passes < max_passes:
         passes += 1
+        last = largest
         largest = 0.0
         for p in range(phases.shape[0] - 1):
-            first, last = phases[p], phases[p + 1]
-            if last - first == 1:
+            first, end = phases[p], phases[p + 1]
+            if end - first == 1:
                 largest = max(largest, projection_rows(bod, con, order, spans[first, 0],
-                                                              spans[first, 1]))
-            elif last > first:
-                largest = max(largest, _projection_phase(bod, con, order, spans, first, last))
-        if largest <= tolerance:
+                                                       spans[first, 1]))
+            elif end > first:
+                largest = max(largest, _projection_phase(bod, con, order, spans, first, end))
+        if largest <= tolerance or (passes > 1 and largest > stall * last):
             break
     return passes, largest
