@@ -66,9 +66,10 @@ def project_positions(bod, con, order, spans, phases, tolerance, max_passes, sta
     Returns (passes, largest depth left)."""
     passes = 0
     largest = 0.0
+    last = 0.0
     while passes < max_passes:
         passes += 1
-        last = largest
+        before, last = last, largest
         largest = 0.0
         for p in range(phases.shape[0] - 1):
             first, end = phases[p], phases[p + 1]
@@ -77,6 +78,6 @@ def project_positions(bod, con, order, spans, phases, tolerance, max_passes, sta
                                                        spans[first, 1]))
             elif end > first:
                 largest = max(largest, _projection_phase(bod, con, order, spans, first, end))
-        if largest <= tolerance or (passes > 1 and largest > stall * last):
+        if largest <= tolerance or (passes > 2 and largest > stall * before):
             break
     return passes, largest

@@ -55,8 +55,9 @@ PROJECTION_TOLERANCE = 1e-4
 MAX_VELOCITY_PASSES = 15
 MAX_IMPACT_PASSES = 8
 MAX_PROJECTION_PASSES = 15
-#: A large set's projection stops once a pass leaves the largest depth above this × the last
-#: pass's: it has stalled on a jammed chain (measured on a settled 1000-sphere pit: 1.5 mm,
+#: A large set's projection stops once a pass leaves the largest depth above this × that of
+#: two passes before (the largest is met before it is corrected, so one pass lags): it has
+#: stalled on a jammed chain (measured on a settled 1000-sphere pit: 1.5 mm,
 #: then 1 % less a pass, 15 passes a step), and the next steps carry on from there. A small
 #: set gets the exact solve instead (``direct.py``).
 PROJECTION_STALL = 0.95
@@ -67,6 +68,9 @@ DIRECT_AFTER_PASSES = 10
 #: too, but passes bring it to rest, and the exact solve cost it ~1 s a step (measured: the
 #: 100-sphere pit, 300 contacts, 157 active-set solves in 100 steps, 152 s of 161).
 DIRECT_MIN_MASS_RATIO = 10.0
+#: ... or has at most this many rows, where the exact solve costs little (a few dense solves of
+#: this size) and ends a slow chain at once.
+DIRECT_ALWAYS_CONTACTS = 64
 #: From this many contacts on, the velocity and projection passes run on every core, block by
 #: block (``partition.py``, ``parallel.py``); below, in row order on one. The choice depends
 #: on the contacts only, never on the threads, so any thread count gives the same bits.
@@ -217,8 +221,9 @@ class Solver:
         small = _direct_may_help(con)
         first = min(DIRECT_AFTER_PASSES, MAX_PROJECTION_PASSES) if small \
             else MAX_PROJECTION_PASSES
+        large = con.a.shape[0] > direct.DIRECT_MAX_CONTACTS
         done, largest = stages.project_positions(bod, con, tolerance, first,
-                                                 math.inf if small else PROJECTION_STALL)
+                                                 PROJECTION_STALL if large else math.inf)
         if largest <= tolerance or not small:
             return done
         depths = np.empty(con.a.shape[0])
@@ -230,11 +235,11 @@ class Solver:
 
 
 def _direct_may_help(con) -> bool:
-    """Small enough for the exact solve, and ill-conditioned as links under heavy loads are
-    (``DIRECT_MIN_MASS_RATIO``)."""
+    """Small enough for the exact solve, and either tiny or ill-conditioned as links under
+    heavy loads are (``DIRECT_MIN_MASS_RATIO``)."""
     if con.a.shape[0] > direct.DIRECT_MAX_CONTACTS:
         return False
-    if con.bil.any():
+    if con.a.shape[0] <= DIRECT_ALWAYS_CONTACTS or con.bil.any():
         return True
     w = np.concatenate([con.wa, con.wb])
     w = w[w > 0.0]

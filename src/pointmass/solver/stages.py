@@ -186,11 +186,12 @@ def project_positions(bod, con, tolerance, max_passes, stall=math.inf):
     Returns (passes, largest depth left)."""
     passes = 0
     largest = 0.0
+    last = 0.0
     while passes < max_passes:
         passes += 1
-        last = largest
+        before, last = last, largest
         largest = projection_rows(bod, con, None, 0, con.a.shape[0])
-        if largest <= tolerance or (passes > 1 and largest > stall * last):
+        if largest <= tolerance or (passes > 2 and largest > stall * before):
             break
     return passes, largest
 
