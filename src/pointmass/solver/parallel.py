@@ -61,15 +61,13 @@ def solve_velocities(bod, con, order, spans, phases, dt, tolerance, max_passes):
 
 
 @njit(cache=True, nogil=True)
-def project_positions(bod, con, order, spans, phases, tolerance, max_passes, stall):
-    """Projection passes phase by phase, stopping as ``stages.project_positions`` does.
+def project_positions(bod, con, order, spans, phases, tolerance, max_passes):
+    """Projection passes phase by phase (see ``stages.project_positions``).
     Returns (passes, largest depth left)."""
     passes = 0
     largest = 0.0
-    last = 0.0
     while passes < max_passes:
         passes += 1
-        before, last = last, largest
         largest = 0.0
         for p in range(phases.shape[0] - 1):
             first, end = phases[p], phases[p + 1]
@@ -78,6 +76,6 @@ def project_positions(bod, con, order, spans, phases, tolerance, max_passes, sta
                                                        spans[first, 1]))
             elif end > first:
                 largest = max(largest, _projection_phase(bod, con, order, spans, first, end))
-        if largest <= tolerance or (passes > 2 and largest > stall * before):
+        if largest <= tolerance:
             break
     return passes, largest

@@ -29,7 +29,6 @@ kernels, kept for teaching and comparison; it keeps no history.
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass
 
 import numpy as np
@@ -55,12 +54,6 @@ PROJECTION_TOLERANCE = 1e-4
 MAX_VELOCITY_PASSES = 15
 MAX_IMPACT_PASSES = 8
 MAX_PROJECTION_PASSES = 15
-#: A large set's projection stops once a pass leaves the largest depth above this × that of
-#: two passes before (the largest is met before it is corrected, so one pass lags): it has
-#: stalled on a jammed chain (measured on a settled 1000-sphere pit: 1.5 mm,
-#: then 1 % less a pass, 15 passes a step), and the next steps carry on from there. A small
-#: set gets the exact solve instead (``direct.py``).
-PROJECTION_STALL = 0.95
 #: A small contact set still unconverged after this many passes gets the exact solve.
 DIRECT_AFTER_PASSES = 10
 #: ... if it is ill-conditioned the way Gauss–Seidel cannot handle: inverse masses of its
@@ -217,13 +210,11 @@ class Solver:
         if blocks is not None:
             return parallel.project_positions(bod, con, blocks.order, blocks.spans,
                                               blocks.phase_starts, tolerance,
-                                              MAX_PROJECTION_PASSES, PROJECTION_STALL)[0]
+                                              MAX_PROJECTION_PASSES)[0]
         small = _direct_may_help(con)
         first = min(DIRECT_AFTER_PASSES, MAX_PROJECTION_PASSES) if small \
             else MAX_PROJECTION_PASSES
-        large = con.a.shape[0] > direct.DIRECT_MAX_CONTACTS
-        done, largest = stages.project_positions(bod, con, tolerance, first,
-                                                 PROJECTION_STALL if large else math.inf)
+        done, largest = stages.project_positions(bod, con, tolerance, first)
         if largest <= tolerance or not small:
             return done
         depths = np.empty(con.a.shape[0])

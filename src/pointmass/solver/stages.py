@@ -8,8 +8,6 @@ Each stage is a plain loop over the contacts, compiled with numba. It takes the 
 
 from __future__ import annotations
 
-import math
-
 from numba import njit
 
 from .kernels import (
@@ -176,22 +174,18 @@ def follow_impulses(bod, con, dt):
 
 
 @njit(cache=True, nogil=True)
-def project_positions(bod, con, tolerance, max_passes, stall=math.inf):
+def project_positions(bod, con, tolerance, max_passes):
     """Interpenetration: passes of mass-weighted projection over every contact in row order
     (``sweeps.projection_rows``) until no penetration exceeds ``tolerance`` [m], at most
-    ``max_passes``, or until a pass leaves the largest depth above ``stall`` × the last one's
-    (the passes have stalled). Positions only: no velocity changes, so projection adds no
-    energy.
+    ``max_passes``. Positions only: no velocity changes, so projection adds no energy.
 
     Returns (passes, largest depth left)."""
     passes = 0
     largest = 0.0
-    last = 0.0
     while passes < max_passes:
         passes += 1
-        before, last = last, largest
         largest = projection_rows(bod, con, None, 0, con.a.shape[0])
-        if largest <= tolerance or (passes > 2 and largest > stall * before):
+        if largest <= tolerance:
             break
     return passes, largest
 
