@@ -8,8 +8,8 @@ their ratio (1.0 = the core costs nothing over the bare loop). Median of several
 compilation excluded. Scenes: 100 000 free particles under gravity and drag; a 100 × 100 cloth
 (19 800 springs with damping, drag, two pinned corners); the ball pit of bench_peers.py
 (10 000 spheres, 600 steps from the same start, against fused_pit.py's one-thread sequential
-impulses with 10 velocity and 4 position passes; the mean speed after the run shows what each
-buys).
+impulses with 10 velocity and 4 position passes; the mean speed and the overlaps after the run
+show what each buys).
 """
 
 from __future__ import annotations
@@ -131,20 +131,18 @@ def bench_cloth(side: int, steps: int, repeats: int) -> tuple[float, float]:
     return _median_rate(ours, n, steps, repeats), _median_rate(limit, n, steps, repeats)
 
 
-def bench_pit(n: int, repeats: int) -> tuple[float, float, float, float]:
-    """(pointmass, fused) body-steps/s over the pit's 600 steps, and their mean speeds after."""
+def bench_pit(n: int, repeats: int) -> tuple[tuple[float, dict], tuple[float, dict]]:
+    """((pointmass body-steps/s, its pile after the run), (the same for the fused loop)) over
+    the pit's 600 steps; a pile is ``bench_peers.measure``'s dict (mean |v|, overlaps)."""
     import bench_peers
 
-    ours, fused = [], []
-    for _ in range(repeats):
-        seconds, _, vel = bench_peers.run_pointmass(n)
-        ours.append((n * bench_peers.STEPS / seconds, np.linalg.norm(vel, axis=1).mean()))
-        seconds, _, vel = bench_peers.run_fused(n)
-        fused.append((n * bench_peers.STEPS / seconds, np.linalg.norm(vel, axis=1).mean()))
-    (rate, speed), (limit, limit_speed) = (
-        (statistics.median(r for r, _ in runs), statistics.median(v for _, v in runs))
-        for runs in (ours, fused))
-    return rate, limit, speed, limit_speed
+    _, side = bench_peers.layout(n)
+    results = []
+    for run in (bench_peers.run_pointmass, bench_peers.run_fused):
+        runs = [run(n) for _ in range(repeats)]
+        rate = n * bench_peers.STEPS / statistics.median(seconds for seconds, _, _ in runs)
+        results.append((rate, bench_peers.measure(runs[-1][1], runs[-1][2], side)))
+    return results[0], results[1]
 
 
 def bench_tiny(steps: int, repeats: int) -> float:
@@ -162,24 +160,39 @@ def bench_tiny(steps: int, repeats: int) -> float:
     return _median_rate(ours, 1, steps, repeats)
 
 
+def pit_row(args) -> None:
+    """The pit's row, and what each pile looks like after the run."""
+    import bench_peers
+
+    bench_peers.run_pointmass(100)  # compile outside the timing
+    n = args.pit or (1000 if args.quick else 10_000)
+    (ours, pile), (limit, limit_pile) = bench_pit(n, 1 if args.quick else 3)
+    name = f"ball pit N = {n}, 600 steps"
+    print(f"{name:34s} {ours:12.3g} {limit:12.3g} {ours / limit:7.2f}")
+    for who, after in (("pointmass", pile), ("fused loop", limit_pile)):
+        print(f"  {who} after the run: mean |v| {after['mean |v|']:.3f} m/s, max |v| "
+              f"{after['max |v|']:.2f} m/s, overlap {after['sphere overlap [mm]']:.1f} mm "
+              f"(walls {after['wall overlap [mm]']:.1f} mm)")
+
+
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--quick", action="store_true", help="fewer steps and repeats")
+    parser.add_argument("--pit", type=int, default=None, help="the pit's N (default 10 000; "
+                        "--quick: 1000)")
+    parser.add_argument("--only-pit", action="store_true", help="the pit row alone")
     args = parser.parse_args()
+    if args.only_pit:
+        print(f"{'scene':34s} {'pointmass':>12s} {'fused loop':>12s} {'ratio':>7s}")
+        pit_row(args)
+        return
     steps, repeats = (20, 3) if args.quick else (100, 5)
     print(f"{'scene':34s} {'pointmass':>12s} {'fused loop':>12s} {'ratio':>7s}")
     for name, (ours, limit) in (
             ("free particles, N = 100 000", bench_free(100_000, steps, repeats)),
             ("cloth 100 × 100 (19 800 springs)", bench_cloth(100, steps, repeats))):
         print(f"{name:34s} {ours:12.3g} {limit:12.3g} {ours / limit:7.2f}")
-    import bench_peers
-
-    bench_peers.run_pointmass(100)  # compile outside the timing
-    n = 1000 if args.quick else 10_000
-    ours, limit, speed, limit_speed = bench_pit(n, 1 if args.quick else 3)
-    name = f"ball pit N = {n}, 600 steps"
-    print(f"{name:34s} {ours:12.3g} {limit:12.3g} {ours / limit:7.2f}   mean |v| after: "
-          f"{speed:.3f} m/s (fused loop {limit_speed:.3f})")
+    pit_row(args)
     tiny = bench_tiny(20_000 if not args.quick else 5_000, repeats)
     print(f"{'1-particle world, steps/s':34s} {tiny:12.3g}")
 

@@ -198,3 +198,4 @@ def project(pos, disp, ca, cb, n, depth0, bil, wa, wb, k, c):
             pos[b, i] += move_b
             disp[b, i] += move_b
     return abs(d)
+

@@ -35,9 +35,10 @@ import numpy as np
 
 from ..contacts import ContactBuffer
 from ..particles import Particles
-from . import body_solver, direct, stages
+from . import body_solver, direct, parallel, stages
 from .history import ImpulseHistory
 from .kernels import Bodies, ContactSet
+from .partition import block_rows
 
 MODES = ("sequential", "worst-first")
 #: Older names accepted for the default mode (the resolver's "auto" and "sweep").
@@ -55,6 +56,21 @@ MAX_IMPACT_PASSES = 8
 MAX_PROJECTION_PASSES = 15
 #: A small contact set still unconverged after this many passes gets the exact solve.
 DIRECT_AFTER_PASSES = 10
+#: ... if it is ill-conditioned the way Gauss–Seidel cannot handle: inverse masses of its
+#: particles this far apart, or a rod among its rows. A pile of equal spheres converges slowly
+#: too, but passes bring it to rest, and the exact solve cost it ~1 s a step (measured: the
+#: 100-sphere pit, 300 contacts, 157 active-set solves in 100 steps, 152 s of 161).
+DIRECT_MIN_MASS_RATIO = 10.0
+#: ... or has at most this many rows, where the exact solve costs little (a few dense solves of
+#: this size) and ends a slow chain at once.
+DIRECT_ALWAYS_CONTACTS = 64
+#: From this many contacts on, the velocity and projection passes run on every core, block by
+#: block (``partition.py``, ``parallel.py``); below, in row order on one. The choice depends
+#: on the contacts only, never on the threads, so any thread count gives the same bits.
+#: Measured on the 10 000-sphere pit (35 000 contacts, 2 cores shared with other work, load
+#: ~10): 80 ms a step serially, 108 ms on the parallel path with 1 thread and 108–138 ms with
+#: 2; it did not pay at any size measured, so it starts above them all.
+PARALLEL_MIN_CONTACTS = 1_000_000
 
 
 @dataclass(frozen=True)
@@ -142,12 +158,14 @@ class Solver:
     def _sequential(self, p, bod, con, contacts, history, dt) -> SolveStats:
         threshold = float(self.restitution_threshold)
         history.recall(contacts.key, con.impulse, con.tangent)
+        blocks = block_rows(con.a, con.b, p.position) \
+            if contacts.count >= PARALLEL_MIN_CONTACTS else None
         impact_passes, hits = stages.impacts(bod, con, dt, threshold, IMPACT_TOLERANCE,
                                              MAX_IMPACT_PASSES)
         passes = MAX_VELOCITY_PASSES if self.max_passes is None else int(self.max_passes)
         before = (p.kinetic_energy(), p.velocity.copy(), p.position.copy(), bod.disp.copy())
         stages.warm_start(bod, con, dt)
-        velocity_passes, used = self._velocities(bod, con, dt, passes)
+        velocity_passes, used = self._velocities(bod, con, dt, passes, blocks)
         cold = p.kinetic_energy() > before[0] * (1.0 + 1e-9) + 1e-15
         if cold:  # the warm start added energy that the passes did not take back: redo cold
             p.velocity[:] = before[1]
@@ -155,10 +173,11 @@ class Solver:
             bod.disp[:] = before[3]
             con.impulse[:] = 0.0
             con.tangent[:] = 0.0
-            more, used2 = self._velocities(bod, con, dt, passes)
+            more, used2 = self._velocities(bod, con, dt, passes, blocks)
             velocity_passes += more
             used += used2
-        position_passes = self._positions(bod, con, PROJECTION_TOLERANCE * dt)
+        stages.follow_impulses(bod, con, dt)
+        position_passes = self._positions(bod, con, PROJECTION_TOLERANCE * dt, blocks)
         history.keep(contacts.key, con.impulse,
                      con.tangent if contacts.friction.any() else None)
         return SolveStats(contacts=contacts.count, impact_passes=int(impact_passes),
@@ -167,10 +186,14 @@ class Solver:
                           resolutions=int(hits + used), cold_restart=bool(cold))
 
     @staticmethod
-    def _velocities(bod, con, dt: float, passes: int) -> tuple[int, int]:
+    def _velocities(bod, con, dt: float, passes: int, blocks) -> tuple[int, int]:
         """Gauss–Seidel passes; a small set still unconverged after ``DIRECT_AFTER_PASSES`` (a
-        mass ratio) gets the exact solve (``direct.py``) and a few passes more for friction."""
-        small = con.a.shape[0] <= direct.DIRECT_MAX_CONTACTS
+        mass ratio) gets the exact solve (``direct.py``) and a few passes more for friction;
+        a large one split into ``blocks`` runs them on every core (``parallel.py``)."""
+        if blocks is not None:
+            return parallel.solve_velocities(bod, con, blocks.order, blocks.spans,
+                                             blocks.phase_starts, dt, VELOCITY_TOLERANCE, passes)
+        small = _direct_may_help(con)
         first = min(passes, DIRECT_AFTER_PASSES) if small else passes
         done, used = stages.solve_velocities(bod, con, dt, VELOCITY_TOLERANCE, first)
         if done < first or not small:
@@ -181,9 +204,14 @@ class Solver:
         return done + more, used + used2 + con.a.shape[0]
 
     @staticmethod
-    def _positions(bod, con, tolerance: float) -> int:
-        """Projection passes, with the exact solve for a small set that does not converge."""
-        small = con.a.shape[0] <= direct.DIRECT_MAX_CONTACTS
+    def _positions(bod, con, tolerance: float, blocks) -> int:
+        """Projection passes, with the exact solve for a small set that does not converge
+        (on every core for a large set split into ``blocks``)."""
+        if blocks is not None:
+            return parallel.project_positions(bod, con, blocks.order, blocks.spans,
+                                              blocks.phase_starts, tolerance,
+                                              MAX_PROJECTION_PASSES)[0]
+        small = _direct_may_help(con)
         first = min(DIRECT_AFTER_PASSES, MAX_PROJECTION_PASSES) if small \
             else MAX_PROJECTION_PASSES
         done, largest = stages.project_positions(bod, con, tolerance, first)
@@ -195,3 +223,15 @@ class Solver:
         more, _ = stages.project_positions(bod, con, tolerance,
                                            max(MAX_PROJECTION_PASSES - first, 1))
         return done + more
+
+
+def _direct_may_help(con) -> bool:
+    """Small enough for the exact solve, and either tiny or ill-conditioned as links under
+    heavy loads are (``DIRECT_MIN_MASS_RATIO``)."""
+    if con.a.shape[0] > direct.DIRECT_MAX_CONTACTS:
+        return False
+    if con.a.shape[0] <= DIRECT_ALWAYS_CONTACTS or con.bil.any():
+        return True
+    w = np.concatenate([con.wa, con.wb])
+    w = w[w > 0.0]
+    return w.shape[0] > 0 and float(w.max()) >= DIRECT_MIN_MASS_RATIO * float(w.min())

@@ -16,13 +16,13 @@ from .kernels import (
     bounce_target,
     clamp_disc,
     closing_within_step,
-    friction_accumulated,
     friction_once,
     project,
     push,
     relative,
     slide,
 )
+from .sweeps import projection_rows, velocity_rows
 
 
 @njit(cache=True, nogil=True)
@@ -34,7 +34,7 @@ def prepare(bod, con, dt):
     by its gap, not more)."""
     ca, cb, n, depth0, bil = con.a, con.b, con.n, con.depth0, con.bil
     wa, wb, k, acc_sep, target = con.wa, con.wb, con.k, con.acc_sep, con.target
-    inv_mass, acc = bod.inv_mass, bod.acc
+    inv_mass, acc, vel = bod.inv_mass, bod.acc, bod.vel
     for c in range(ca.shape[0]):
         b = cb[c]
         wa[c] = inv_mass[ca[c]]
@@ -50,8 +50,11 @@ def prepare(bod, con, dt):
         if b >= 0:
             along += abs(acc[b, 0] * n[c, 0] + acc[b, 1] * n[c, 1] + acc[b, 2] * n[c, 2])
         acc_sep[c] = -along * dt
-        d = depth0[c]
-        target[c] = d / dt if d < 0.0 and not bil[c] else 0.0  # a rod: held, not a gap
+        # The depth before this step's move (depth0 is measured after it): the sweep's
+        # impulses move the positions too (``follow_impulses``), so a contact ends the step
+        # at depth ``before - vs·dt``: a gap may close by itself, no more (a rod: held).
+        before = depth0[c] + relative(vel, ca, cb, n, c) * dt
+        target[c] = before / dt if before < 0.0 and not bil[c] else 0.0
 
 
 @njit(cache=True, nogil=True)
@@ -129,91 +132,59 @@ def warm_start(bod, con, dt):
 
 @njit(cache=True, nogil=True)
 def solve_velocities(bod, con, dt, tolerance, max_passes):
-    """Sequential impulses (Catto; box2d-lite's ``Arbiter::ApplyImpulse``): Gauss–Seidel passes
-    over every contact, each keeping an accumulated impulse clamped at ≥ 0 (contacts push, never
-    pull, and a warm start that was too strong is taken back; a bilateral rod is not clamped),
-    aiming at the separating velocity ``target``; friction right after each normal impulse.
-    Stops once no contact's velocity changes by more than ``tolerance`` [m/s] in a pass, at
-    most ``max_passes``.
+    """Sequential impulses over every contact in row order (``sweeps.velocity_rows``),
+    passes until no contact's velocity changes by more than ``tolerance`` [m/s] in a pass,
+    at most ``max_passes``.
 
     Returns (passes, resolutions)."""
-    ca, cb, n, mu, wa, wb, k = con.a, con.b, con.n, con.mu, con.wa, con.wb, con.k
-    target, impulse, tangent, bil = con.target, con.impulse, con.tangent, con.bil
-    pos, vel, disp = bod.pos, bod.vel, bod.disp
     passes = 0
     used = 0
     while passes < max_passes:
         passes += 1
-        largest = 0.0
-        for c in range(ca.shape[0]):
-            if k[c] == 0.0:
-                continue
-            vs = relative(vel, ca, cb, n, c)
-            old = impulse[c]
-            total = old + (target[c] - vs) * k[c]
-            if total < 0.0 and not bil[c]:
-                total = 0.0  # contacts push, never pull (a rod does both: it is bilateral)
-            step = total - old
-            if step != 0.0:
-                impulse[c] = total
-                # kernels.push written out: 25 → 6 ns per contact visit (see project_positions)
-                a = ca[c]
-                b = cb[c]
-                for i in range(3):
-                    vel[a, i] += n[c, i] * step * wa[c]
-                    if b >= 0:
-                        vel[b, i] -= n[c, i] * step * wb[c]
-                change = abs(step) / k[c]
-                if change > largest:
-                    largest = change
-                used += 1
-            if mu[c] > 0.0:
-                change = friction_accumulated(pos, vel, disp, ca, cb, n, wa, wb, k, mu,
-                                              impulse, tangent, c, dt)
-                if change > largest:
-                    largest = change
+        largest, hits = velocity_rows(bod, con, None, 0, con.a.shape[0], dt)
+        used += hits
         if largest <= tolerance:
             break
     return passes, used
 
 
 @njit(cache=True, nogil=True)
-def project_positions(bod, con, tolerance, max_passes):
-    """Interpenetration: Gauss–Seidel passes moving each contact's particles apart along n by
-    inverse mass, until no penetration exceeds ``tolerance`` [m], at most ``max_passes``.
-    Positions only: no velocity changes, so projection adds no energy.
+def follow_impulses(bod, con, dt):
+    """Move the particles by the velocity the sweep's normal impulses gave them, × dt (its
+    friction impulses already did, in ``kernels.slide``): the integration moved them with the
+    velocities before the contacts, so a resting sphere sank g·dt² each step for projection to
+    lift again, through the whole pile (measured: a 10 000-sphere pit never converged in 15
+    projection passes). Box2D solves velocities, then integrates; this is the same order."""
+    ca, cb, n, wa, wb, impulse = con.a, con.b, con.n, con.wa, con.wb, con.impulse
+    pos, disp = bod.pos, bod.disp
+    for c in range(ca.shape[0]):
+        j = impulse[c] * dt
+        if j == 0.0:
+            continue
+        a = ca[c]
+        b = cb[c]
+        for i in range(3):
+            move = n[c, i] * j * wa[c]
+            pos[a, i] += move
+            disp[a, i] += move
+            if b >= 0:
+                move = -n[c, i] * j * wb[c]
+                pos[b, i] += move
+                disp[b, i] += move
 
-    This is ``kernels.project`` written into the loop: numba's call boundary (even inlined)
-    cost 113 ns per contact visit here, against 6 ns written out (measured on a 1000-sphere
-    pile, 100 passes).
+
+@njit(cache=True, nogil=True)
+def project_positions(bod, con, tolerance, max_passes):
+    """Interpenetration: passes of mass-weighted projection over every contact in row order
+    (``sweeps.projection_rows``) until no penetration exceeds ``tolerance`` [m], at most
+    ``max_passes``. Positions only: no velocity changes, so projection adds no energy.
 
     Returns (passes, largest depth left)."""
-    ca, cb, n, depth0, wa, wb, k = con.a, con.b, con.n, con.depth0, con.wa, con.wb, con.k
-    bil = con.bil
-    pos, disp = bod.pos, bod.disp
     passes = 0
     largest = 0.0
     while passes < max_passes:
         passes += 1
-        largest = 0.0
-        for c in range(ca.shape[0]):
-            d = depth0[c] - relative(disp, ca, cb, n, c)
-            if k[c] == 0.0 or (d <= PENETRATION_EPSILON
-                               and not (bil[c] and d < -PENETRATION_EPSILON)):
-                continue
-            if abs(d) > largest:
-                largest = abs(d)
-            share = d * k[c]
-            a = ca[c]
-            b = cb[c]
-            for i in range(3):
-                move = n[c, i] * share * wa[c]
-                pos[a, i] += move
-                disp[a, i] += move
-                if b >= 0:
-                    move = -n[c, i] * share * wb[c]
-                    pos[b, i] += move
-                    disp[b, i] += move
+        largest = projection_rows(bod, con, None, 0, con.a.shape[0])
         if largest <= tolerance:
             break
     return passes, largest

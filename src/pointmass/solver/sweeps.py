@@ -1,0 +1,85 @@
+"""One Gauss–Seidel visit of a run of contact rows: ``rows[lo:hi]`` in order (``rows`` None:
+the contacts lo..hi-1 themselves, with no indirection), each row seeing the velocities its
+predecessors left. The serial sweep visits every row (``stages``); the parallel one visits
+one group of rows per thread, groups that share no particle (``partition.py``, ``parallel.py``).
+
+Each body is written into its loop rather than called per row: a per-row helper taking the
+arrays costs ~5× per contact visit even inlined (measured here: 505 against 148 ns a row on a
+10 000-sphere pit under load; the stages' comments measured the same for push and project).
+"""
+
+from __future__ import annotations
+
+from numba import njit
+
+from .kernels import PENETRATION_EPSILON, friction_accumulated, relative
+
+
+@njit(cache=True, nogil=True)
+def velocity_rows(bod, con, rows, lo, hi, dt):
+    """Sequential impulses (Catto; box2d-lite's ``Arbiter::ApplyImpulse``) on rows[lo:hi]:
+    each keeps an accumulated impulse clamped at ≥ 0 (contacts push, never pull, and a warm
+    start that was too strong is taken back; a bilateral rod is not clamped), aiming at the
+    separating velocity ``target``; friction right after each normal impulse.
+
+    Returns (the largest velocity change of a row [m/s], the rows whose impulse changed)."""
+    ca, cb, n, mu, wa, wb, k = con.a, con.b, con.n, con.mu, con.wa, con.wb, con.k
+    target, impulse, tangent, bil = con.target, con.impulse, con.tangent, con.bil
+    pos, vel, disp = bod.pos, bod.vel, bod.disp
+    largest = 0.0
+    used = 0
+    for r in range(lo, hi):
+        c = r if rows is None else rows[r]
+        change = 0.0
+        if k[c] != 0.0:
+            vs = relative(vel, ca, cb, n, c)
+            old = impulse[c]
+            total = old + (target[c] - vs) * k[c]
+            if total < 0.0 and not bil[c]:
+                total = 0.0  # contacts push, never pull (a rod does both: it is bilateral)
+            step = total - old
+            if step != 0.0:
+                impulse[c] = total
+                a = ca[c]  # kernels.push written out (see the module docstring)
+                b = cb[c]
+                for i in range(3):
+                    vel[a, i] += n[c, i] * step * wa[c]
+                    if b >= 0:
+                        vel[b, i] -= n[c, i] * step * wb[c]
+                change = abs(step) / k[c]
+                used += 1
+            if mu[c] > 0.0:
+                change = max(change, friction_accumulated(pos, vel, disp, ca, cb, n, wa, wb, k,
+                                                          mu, impulse, tangent, c, dt))
+        largest = max(largest, change)
+    return largest, used
+
+
+@njit(cache=True, nogil=True)
+def projection_rows(bod, con, rows, lo, hi):
+    """Mass-weighted projection on rows[lo:hi]: move each contact's particles apart along n by
+    inverse mass until it no longer penetrates (a rod: until its length is right). Positions
+    only. Returns the largest depth found [m]."""
+    ca, cb, n, depth0, wa, wb, k = con.a, con.b, con.n, con.depth0, con.wa, con.wb, con.k
+    bil = con.bil
+    pos, disp = bod.pos, bod.disp
+    largest = 0.0
+    for r in range(lo, hi):
+        c = r if rows is None else rows[r]
+        d = depth0[c] - relative(disp, ca, cb, n, c)
+        if k[c] != 0.0 and (d > PENETRATION_EPSILON
+                            or (bil[c] and d < -PENETRATION_EPSILON)):
+            largest = max(largest, abs(d))
+            share = d * k[c]
+            a = ca[c]
+            b = cb[c]
+            for i in range(3):
+                move = n[c, i] * share * wa[c]
+                pos[a, i] += move
+                disp[a, i] += move
+                if b >= 0:
+                    move = -n[c, i] * share * wb[c]
+                    pos[b, i] += move
+                    disp[b, i] += move
+    return largest
+
