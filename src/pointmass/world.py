@@ -192,6 +192,7 @@ class World:
         self.sleeping_impulses = sleeping.SleepingImpulses()
         #: Body pairs (K, 2) that must share an island (joints): they sleep and wake together.
         self.island_links = np.zeros((0, 2), np.int64)
+        self._wakes_seen = 0
         self.sleep = sleep
         #: The particles' surface against rigid bodies (every particle with radius > 0 meets
         #: every body): a contact uses √(μp·μb) and max(ep, eb), as between two bodies. The
@@ -283,8 +284,7 @@ class World:
     def _wake_all(self) -> None:
         b = self.bodies
         if not b.awake.all():
-            woken = b.wake_islands(np.unique(b.island[~b.awake]))
-            self.sleeping_impulses.give_back(self.body_impulses, woken)
+            b.wake_islands(np.unique(b.island[~b.awake]))
 
     @property
     def restitution_threshold(self) -> float:
@@ -592,6 +592,9 @@ class World:
         p = self.particles
         planes = [g for g in self.contact_generators if isinstance(g, Plane)]
         while True:
+            if b.wakes != self._wakes_seen:  # islands woke (here, or by hand since)
+                self._wakes_seen = b.wakes
+                self.sleeping_impulses.give_back(self.body_impulses, b.awake)
             live = sleeping.active(b) if self._sleep and not b.awake.all() else None
             generate_body_contacts(b, planes, dt, self.body_contacts, active=live)
             packed = add_particle_contacts(b, p, dt, self.body_contacts, self._particle_friction,
@@ -605,9 +608,7 @@ class World:
                 if packed is not None:
                     packed.freeze(~b.awake)  # particles resting on sleepers push as on scenery
                 return packed, full
-            woken = b.wake_islands(np.unique(b.island[woken]))
-            self.sleeping_impulses.give_back(self.body_impulses, woken)
-            self._kick(dt, woken)
+            self._kick(dt, b.wake_islands(np.unique(b.island[woken])))
 
     def _fall_asleep(self, dt: float) -> None:
         """End of a step: islands still for long enough fall asleep (``rigid/sleep.py``)."""

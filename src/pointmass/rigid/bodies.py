@@ -59,6 +59,9 @@ class Bodies:
 
     def __init__(self, capacity: int = 16) -> None:
         self._count = 0
+        #: How many times islands were woken (the world gives their warm start back when
+        #: this changes, ``rigid/sleep.py``).
+        self.wakes = 0
         self._alloc(max(int(capacity), 1))
 
     # -- storage -------------------------------------------------------------------------------
@@ -244,6 +247,7 @@ class Bodies:
         """Wake every sleeping body whose island is in ``islands`` (int array); their
         still-times start from 0. Returns the mask (N,) of the bodies woken."""
         woken = ~self.awake & np.isin(self.island, islands)
+        self.wakes += 1
         self.awake[woken] = True
         self.sleep_time[woken] = 0.0
         self.island[woken] = -1

@@ -142,6 +142,8 @@ def touched_sleepers(n, ca, cb, awake, out):
     that moves. Rows to particles (index ≥ n) and planes are skipped. Returns how many."""
     count = 0
     for c in range(ca.shape[0]):
+        if ca[c] >= n:
+            continue  # a particle row: ``hit_by_particles`` judges it
         for side in range(2):
             i = ca[c] if side == 0 else cb[c]
             if 0 <= i < n and not awake[i] and not out[i]:
