@@ -596,7 +596,10 @@ class World:
                 self._wakes_seen = b.wakes
                 self.sleeping_impulses.give_back(self.body_impulses, b.awake)
             live = sleeping.active(b) if self._sleep and not b.awake.all() else None
-            generate_body_contacts(b, planes, dt, self.body_contacts, active=live)
+            if live is not None and not live.any():  # all asleep or still: nothing to find
+                self.body_contacts.resize(0)
+            else:
+                generate_body_contacts(b, planes, dt, self.body_contacts, active=live)
             packed = add_particle_contacts(b, p, dt, self.body_contacts, self._particle_friction,
                                            self._particle_restitution)
             full = acc if packed is None else np.concatenate(
