@@ -608,8 +608,7 @@ class World:
                 return packed, full
             woken = sleeping.touched(b, self.body_contacts, packed, full, dt)
             if not woken.any():
-                if packed is not None:
-                    packed.freeze(~b.awake)  # particles resting on sleepers push as on scenery
+                sleeping.leave_sleepers_out(b, self.body_contacts, packed)
                 return packed, full
             self._kick(dt, b.wake_islands(np.unique(b.island[woken])))
 

@@ -23,7 +23,7 @@ from .shapes import NONE, Box, Sphere, mass_properties
 _FIELDS_3 = ("position", "velocity", "angular_velocity", "force", "torque", "inv_inertia", "size")
 _FIELDS_1 = ("inv_mass", "linear_damping", "angular_damping", "friction", "restitution")
 #: Sleep state (``islands.py``, ``sleep.py``): kept in snapshots like the rest.
-_SLEEP_FIELDS = ("awake", "sleep_time", "island")
+_SLEEP_FIELDS = ("awake", "sleep_time", "island", "still_position", "still_orientation")
 _DTYPES = {"shape": np.int64, "island": np.int64, "awake": np.bool_}
 
 
@@ -53,6 +53,8 @@ class Bodies:
             contact with another sleeping body or the scenery, until something wakes its
             island. Immovable bodies are always awake.
         sleep_time: Seconds each awake body has been still [s], shape (N,).
+        still_position, still_orientation: The pose its still-time counts from, shapes (N, 3)
+            and (N, 4): moving far from it restarts the count (``islands.still_timers``).
         island: The island a sleeping body fell asleep with (its lowest body index), or -1
             while awake, shape (N,), int64: waking one body wakes all of it.
     """
@@ -70,7 +72,8 @@ class Bodies:
         shapes = dict.fromkeys(_FIELDS_3, (capacity, 3))
         shapes.update(dict.fromkeys(_FIELDS_1, (capacity,)))
         shapes.update(orientation=(capacity, 4), inv_inertia_world=(capacity, 3, 3),
-                      shape=(capacity,), **dict.fromkeys(_SLEEP_FIELDS, (capacity,)))
+                      shape=(capacity,), **dict.fromkeys(_SLEEP_FIELDS[:3], (capacity,)),
+                      still_position=(capacity, 3), still_orientation=(capacity, 4))
         for name, shape in shapes.items():
             arr = np.zeros(shape, dtype=_DTYPES.get(name, np.float64))
             old = getattr(self, "_" + name, None)
@@ -108,6 +111,8 @@ class Bodies:
     awake = _view("awake", "Whether each body moves (not asleep), (N,) bool.")
     sleep_time = _view("sleep_time", "Seconds each awake body has been still [s], (N,).")
     island = _view("island", "A sleeping body's island (lowest index), -1 awake, (N,).")
+    still_position = _view("still_position", "Where the still-time counts from [m], (N, 3).")
+    still_orientation = _view("still_orientation", "The orientation it counts from, (N, 4).")
     del _view
 
     # -- adding --------------------------------------------------------------------------------
@@ -183,6 +188,8 @@ class Bodies:
         self._awake[i] = True
         self._sleep_time[i] = 0.0
         self._island[i] = -1
+        self._still_position[i] = pos
+        self._still_orientation[i] = quat
         return i
 
     def add_sphere(self, radius: float, position=(0.0, 0.0, 0.0), velocity=(0.0, 0.0, 0.0),
@@ -280,6 +287,8 @@ class Bodies:
             self._awake[:n] = True
             self._sleep_time[:n] = 0.0
             self._island[:n] = -1
+            self._still_position[:n] = snap["position"]
+            self._still_orientation[:n] = snap["orientation"]
         for name, arr in snap.items():
             getattr(self, "_" + name)[:n] = arr
 

@@ -2,9 +2,9 @@
 the warm start a sleeping island keeps (the kernels are in ``islands.py``).
 
 Wakes an island (all of it, its still-time back to 0):
-- a contact row with a body that moves (a pair is narrow-phased when either body is awake,
-  speculative points included, so a ball about to hit a sleeping stack wakes it before the
-  solver sees the pair: the stack takes the blow);
+- a contact row with an awake body (a pair is narrow-phased when either body is awake) that
+  touches it, or whose speculative gap closes within the step: a ball about to hit a sleeping
+  stack wakes it before the solver sees the pair, so the stack takes the blow;
 - a particle that hits one of its bodies faster than ``SLEEP_SPEED`` (one resting on it leaves
   it asleep and pushes against it as against scenery);
 - a force or torque in the accumulators (``add_force`` and friends wake at once; a body force
@@ -94,11 +94,29 @@ def touched(bodies, contacts, packed, acceleration, dt: float) -> np.ndarray:
     n = b.count
     out = np.zeros(n, dtype=bool)
     c = contacts
-    isl.touched_sleepers(n, c.a, c.b, b.awake, out)
+    isl.touched_sleepers(n, c.a, c.b, c.normal, c.r_a, c.r_b, c.depth, b.velocity,
+                         b.angular_velocity, b.awake, float(dt), out)
     if packed is not None:
         isl.hit_by_particles(n, c.a, c.b, c.normal, packed.velocity, acceleration, b.awake,
                              float(dt), isl.SLEEP_SPEED, out)
     return out
+
+
+def leave_sleepers_out(bodies, contacts, packed) -> None:
+    """After the wakes: drop the body rows that reach a sleeping body (speculative gaps that
+    stay open this step: they would only jostle it), and make the sleeping bodies that
+    particles rest on immovable in the packed view (they push as on scenery)."""
+    b = bodies
+    asleep = ~b.awake
+    c = contacts
+    n = b.count
+    ends = np.where((c.a < n), c.a, 0), np.where((c.b >= 0) & (c.b < n), c.b, 0)
+    body_row = (c.a < n) & (c.b >= 0)
+    near = body_row & (asleep[ends[0]] | asleep[ends[1]])
+    if near.any():
+        c.keep(~near)
+    if packed is not None:
+        packed.freeze(asleep)
 
 
 def fall_asleep(bodies, contacts, links: np.ndarray, dt: float) -> np.ndarray | None:
@@ -111,8 +129,9 @@ def fall_asleep(bodies, contacts, links: np.ndarray, dt: float) -> np.ndarray | 
     movable = b.inv_mass > 0.0
     extent = np.empty(n)
     isl.extents(b.shape, b.size, b.inv_mass, b.inv_inertia, extent)
-    isl.still_timers(b.velocity, b.angular_velocity, extent, movable, b.awake, b.sleep_time,
-                     float(dt), isl.SLEEP_SPEED)
+    isl.still_timers(b.position, b.orientation, extent, movable, b.awake, b.still_position,
+                     b.still_orientation, b.sleep_time, float(dt),
+                     isl.SLEEP_SPEED * isl.TIME_TO_SLEEP, isl.TIME_TO_SLEEP)
     parent = np.empty(n, np.int64)
     c = contacts
     isl.build_islands(n, c.a, c.b, c.depth, movable, links[:, 0], links[:, 1], parent)

@@ -42,20 +42,32 @@ def _step_until_asleep(world, seconds=5.0):
     raise AssertionError(f"still awake after {seconds} s")
 
 
+def _corners(box):
+    signs = np.array([[(k >> a & 1) * 2 - 1 for a in range(3)] for k in range(8)], float)
+    return np.array([box.to_world(HALF * s) for s in signs])
+
+
 def test_a_dropped_box_falls_asleep_soon_after_it_settles_and_stays_exactly_put():
+    """It sleeps within 0.5 s of its last step above 0.05 m/s, once no corner has moved 2.5 cm
+    (0.05 m/s × 0.5 s) in the last 0.5 s, and then does not move by a single bit."""
     world = _world()
     box = world.add_body(Box((HALF,) * 3), (0.0, 1.5, 0.0), (0.96, 0.2, 0.0, 0.2), mass=1.0)
+    window = round(islands.TIME_TO_SLEEP / DT)
+    corners = [_corners(box)]
     rest = None  # the start of the last stretch below the threshold before it slept
     for k in range(int(5.0 / DT)):
         stats = world.step(DT)
         if not box.awake:
             break
+        corners.append(_corners(box))
         slow = _fastest_point(world)[0] <= islands.SLEEP_SPEED
         rest = (rest if rest is not None else (k + 1) * DT) if slow else None
     else:
         raise AssertionError("the box never fell asleep")
     slept = (k + 1) * DT
-    assert islands.TIME_TO_SLEEP - 1e-9 <= slept - rest <= islands.TIME_TO_SLEEP + 2 * DT
+    assert rest is not None and slept - rest <= islands.TIME_TO_SLEEP + 2 * DT
+    moved = np.linalg.norm(corners[-1] - corners[-1 - window], axis=1).max()
+    assert moved < islands.SLEEP_SPEED * islands.TIME_TO_SLEEP
     assert stats.awake_bodies == 0
     pose = box.position.copy(), box.orientation.copy()
     assert abs(pose[0][1] - HALF) < 2e-3  # asleep on its face, not in mid-air
