@@ -163,10 +163,11 @@ class World:
         restitution_threshold: Closing speeds below this [m/s] do not bounce. 0 by default:
             the resting-contact trick keeps piles still without hiding any inelasticity.
         substeps: Substeps per ``step``; each runs the whole pipeline with dt / substeps.
-        sleep: Whether rigid bodies sleep: an island of bodies that has been still (below
-            0.05 m/s) for 0.5 s stops being integrated and solved until something touches or
-            pushes it (``rigid/islands.py``, ``rigid/sleep.py``). On by default; False gives
-            every body a full step always.
+        sleep: Whether rigid bodies sleep: an island of touching bodies none of whose points
+            has gone 2.5 cm in 0.5 s (0.05 m/s) stops being integrated and solved until a
+            moving body touches it, a particle hits it, a force pushes it or the user moves
+            it (``rigid/islands.py``, ``rigid/sleep.py``). On by default; False gives every
+            body a full step always (bit for bit the trajectory of an engine without sleep).
 
     Example:
         >>> import pointmass as pm
@@ -462,8 +463,10 @@ class World:
         energy = (self.particles.kinetic_energy()
                   if self.contacts.count or self._particles_touched
                   else float(self._integrated[3]))
-        if self.bodies.count:
-            energy += self.bodies.kinetic_energy()
+        b = self.bodies
+        awake = int(np.count_nonzero(b.awake & (b.inv_mass > 0))) if b.count else 0
+        if b.count and b.awake.any():  # every body asleep: all velocities are 0
+            energy += b.kinetic_energy()
         deepest = float(pen.max()) if pen.size and pen.max() > 0 else 0.0
         rows = self._body_rows
         if rows is not None:
@@ -478,9 +481,7 @@ class World:
         return StepStats(contacts=self.contacts.count, iterations=iterations,
                          max_penetration=deepest, kinetic_energy=energy, mode=self.solver.mode,
                          velocity_passes=velocity_passes, position_passes=position_passes,
-                         body_contacts=self.body_contacts.count,
-                         awake_bodies=int(np.count_nonzero(self.bodies.awake
-                                                           & (self.bodies.inv_mass > 0))))
+                         body_contacts=self.body_contacts.count, awake_bodies=awake)
 
     def _substep(self, dt: float) -> SolveStats:
         p = self.particles
