@@ -592,6 +592,7 @@ class World:
         b = self.bodies
         p = self.particles
         planes = [g for g in self.contact_generators if isinstance(g, Plane)]
+        links = sleeping.check_links(self.island_links, b.count) if self._sleep else None
         while True:
             if b.wakes != self._wakes_seen:  # islands woke (here, or by hand since)
                 self._wakes_seen = b.wakes
@@ -607,7 +608,7 @@ class World:
                 [acc, p.acceleration[packed.selected]])
             if live is None:
                 return packed, full
-            woken = sleeping.touched(b, self.body_contacts, packed, full, dt)
+            woken = sleeping.touched(b, self.body_contacts, packed, full, dt, links, live)
             if not woken.any():
                 sleeping.leave_sleepers_out(b, self.body_contacts, packed)
                 return packed, full

@@ -85,14 +85,18 @@ def active(bodies) -> np.ndarray:
     return b.awake & ((b.inv_mass > 0.0) | moving)
 
 
-def touched(bodies, contacts, packed, acceleration, dt: float) -> np.ndarray:
+def touched(bodies, contacts, packed, acceleration, dt: float, links: np.ndarray,
+            live: np.ndarray) -> np.ndarray:
     """Mask (N,) of the sleeping bodies that this substep's rows wake: a row with a moving
-    body, or a particle that hits (``islands.touched_sleepers``, ``hit_by_particles``);
-    ``packed`` is the particle–body view or None, ``acceleration`` (N + particles, 3) what
-    this substep's forces gave each of its rows [m/s²]."""
+    body, or a particle that hits (``islands.touched_sleepers``, ``hit_by_particles``), or a
+    link (``links`` (K, 2)) to an ``active`` body (``live``); ``packed`` is the particle–body
+    view or None, ``acceleration`` (N + particles, 3) what this substep's forces gave each of
+    its rows [m/s²]."""
     b = bodies
     n = b.count
     out = np.zeros(n, dtype=bool)
+    for one, other in ((links[:, 0], links[:, 1]), (links[:, 1], links[:, 0])):
+        out[other[live[one] & ~b.awake[other]]] = True
     c = contacts
     isl.touched_sleepers(n, c.a, c.b, c.normal, c.r_a, c.r_b, c.depth, b.velocity,
                          b.angular_velocity, b.awake, float(dt), out)

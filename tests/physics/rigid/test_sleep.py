@@ -314,6 +314,20 @@ def test_linked_bodies_share_an_island():
     assert linked > alone + 20  # waited for the falling box to land and settle
 
 
+def test_a_link_to_a_moving_body_wakes_a_sleeper():
+    world = _world()
+    rest = world.add_body(Box((HALF,) * 3), (0.0, HALF, 0.0), mass=1.0)
+    other = world.add_body(Box((HALF,) * 3), (5.0, HALF, 0.0), mass=1.0)
+    anchor = world.add_body(Box((HALF,) * 3), (9.0, 5.0, 0.0), mass=float("inf"))
+    world.island_links = np.array([[0, 1], [1, 2]])  # a static anchor wakes nothing
+    for _ in range(60):
+        world.step(DT)
+    assert anchor.awake and not rest.awake and not other.awake
+    other.velocity = (1.0, 0.0, 0.0)
+    world.step(DT)
+    assert rest.awake
+
+
 def test_turning_sleep_off_wakes_everyone():
     world = _world()
     _stack(world, 2)
