@@ -137,16 +137,26 @@ def still_timers(pos, quat, extent, movable, awake, still_pos, still_quat, sleep
 
 
 @njit(cache=True, nogil=True)
-def fall_asleep(parent, movable, awake, sleep_time, vel, ang, island, time_to_sleep):
+def fall_asleep(parent, movable, awake, sleep_time, vel, ang, extent, island, time_to_sleep,
+                speed):
     """Put to sleep every island (``parent`` from ``build_islands``) whose awake movable bodies
-    have all been still for ``time_to_sleep`` [s]: ``awake`` False, velocities zeroed,
-    ``island`` set to the island's name. An island that holds a body already asleep (one the
-    user put to sleep by hand, touching) waits: it wakes with the rest at the next contact.
-    Returns the bodies put to sleep."""
+    have all been still for ``time_to_sleep`` [s] and none of whose points moves faster than
+    ``speed`` [m/s] now (|v| + |ω|·extent: a calm moment, so a body that has only begun to
+    tip or slide is not frozen in mid-move; a jitter spike only delays the sleep by a step):
+    ``awake`` False, velocities zeroed, ``island`` set to the island's name. An island that
+    holds a body already asleep (one the user put to sleep by hand, touching) waits: it wakes
+    with the rest at the next contact. Returns the bodies put to sleep."""
     n = parent.shape[0]
     ready = np.ones(n, np.bool_)
     for i in range(n):
-        if movable[i] and (not awake[i] or sleep_time[i] < time_to_sleep):
+        if not movable[i]:
+            continue
+        if not awake[i] or sleep_time[i] < time_to_sleep:
+            ready[parent[i]] = False
+            continue
+        v = math.sqrt(vel[i, 0] ** 2 + vel[i, 1] ** 2 + vel[i, 2] ** 2)
+        w = math.sqrt(ang[i, 0] ** 2 + ang[i, 1] ** 2 + ang[i, 2] ** 2)
+        if v + w * extent[i] > speed:
             ready[parent[i]] = False
     slept = 0
     for i in range(n):

@@ -141,7 +141,8 @@ def fall_asleep(bodies, contacts, links: np.ndarray, dt: float) -> np.ndarray | 
     isl.build_islands(n, c.a, c.b, c.depth, movable, links[:, 0], links[:, 1], parent)
     was = b.awake.copy()
     slept = isl.fall_asleep(parent, movable, b.awake, b.sleep_time, b.velocity,
-                            b.angular_velocity, b.island, isl.TIME_TO_SLEEP)
+                            b.angular_velocity, extent, b.island, isl.TIME_TO_SLEEP,
+                            isl.SLEEP_SPEED)
     return (was & ~b.awake) if slept else None
 
 
