@@ -353,3 +353,16 @@ def test_bad_settings_name_the_parameter(setting, error):
     world.island_links = np.array([[0, 5]])
     with pytest.raises(IndexError, match="island_links"):
         world.step(DT)
+
+
+def test_a_box_tipping_off_its_edge_is_not_frozen_on_the_way_down():
+    """Balanced 0.5° past its edge, the box starts to turn so slowly that it moves less than
+    2.5 cm in its first 0.5 s; it must still fall flat before it sleeps."""
+    world = _world()
+    tilt = np.radians(45.5)
+    height = HALF * np.sqrt(2.0) * np.cos(np.radians(0.5))
+    box = world.add_body(Box((HALF,) * 3), (0.0, height + 1e-4, 0.0),
+                         (np.cos(tilt / 2), 0.0, 0.0, np.sin(tilt / 2)), mass=1.0, friction=1.0)
+    _step_until_asleep(world)
+    turned = 2.0 * np.degrees(np.arccos(min(1.0, abs(box.orientation[0]))))
+    assert abs(turned - 90.0) < 0.1 and abs(box.position[1] - HALF) < 1e-3
