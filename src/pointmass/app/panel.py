@@ -150,6 +150,11 @@ class Panel:
         changed, n = imgui.slider_int("substeps", world.substeps, 1, 20)
         if changed:
             host.set_world("substeps", n)
+        if world.bodies.count:
+            changed, on = imgui.checkbox("sleep", world.sleep)
+            imgui.set_item_tooltip("still islands of rigid bodies stop until touched or pushed")
+            if changed:
+                host.set_world("sleep", on)
         changed, scale = imgui.slider_float("time scale", host.clock.time_scale, 0.05, 8.0,
                                             "%.2fx", imgui.SliderFlags_.logarithmic)
         if changed:
