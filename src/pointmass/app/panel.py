@@ -174,9 +174,9 @@ class Panel:
             ("physics per step", f"{s.step_ms:.2f} ms  (dt {1e3 * host.sim.dt:.2f} ms)"),
             ("panel per frame", f"{s.gui_ms:.2f} ms"),
             ("particles", particle_count(scene)
-             + (f"  (+ {bodies} rigid bodies, {last.awake_bodies} awake)"
-                if bodies and last is not None else
-                f"  (+ {bodies} rigid bodies)" if bodies else "")),
+             + (f"  (+ {bodies} rigid bodies)" if bodies else "")),
+            *((("bodies awake", f"{last.awake_bodies}"),) if bodies and last is not None
+              else ()),
             ("contacts", f"{contacts}" + (f"  ({last.mode})" if last is not None else "")),
             ("kinetic energy", f"{world.kinetic_energy():.4g} J"),
             ("potential energy", f"{world.potential_energy():.4g} J"),
