@@ -366,3 +366,21 @@ def test_a_box_tipping_off_its_edge_is_not_frozen_on_the_way_down():
     _step_until_asleep(world)
     turned = 2.0 * np.degrees(np.arccos(min(1.0, abs(box.orientation[0]))))
     assert abs(turned - 90.0) < 0.1 and abs(box.position[1] - HALF) < 1e-3
+
+
+def test_sleep_with_substeps_is_deterministic_and_still_sleeps():
+    def run():
+        world = _world(substeps=3)
+        _stack(world, 3)
+        ball = world.add_body(Sphere(0.2), (-3.0, 0.2, 0.0), mass=5.0)
+        slept = False
+        for k in range(150):
+            if k == 90:
+                ball.velocity = (12.0, 1.0, 0.0)
+            slept |= world.step(DT).awake_bodies == 0
+        return world.bodies.snapshot(), slept
+
+    (a, slept), (b, _) = run(), run()
+    assert slept
+    for name in a:
+        assert np.array_equal(a[name], b[name]), name
