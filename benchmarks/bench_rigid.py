@@ -28,7 +28,9 @@ highest box, pyramid: the apex), the max and mean linear speed, the deepest box�
 beyond the floor or a wall, and the escapes (centre below the floor or outside the walls).
 "At rest" for the pit is max speed ≤ 0.1 m/s and box overlap ≤ 1 cm.
 
-Engine settings: pointmass, ``World()`` defaults; PyBullet, DIRECT mode, defaults (50 solver
+Engine settings: pointmass, ``World()`` defaults (islands sleep; "pointmass, sleep off" is
+``World(sleep=False)``, the baseline for what sleeping buys, with the awake count and the time
+everything was asleep printed under the table); PyBullet, DIRECT mode, defaults (50 solver
 iterations, no substeps), maximal coordinates, damping zeroed (the others have none), friction
 √0.5 per shape (Bullet multiplies the two), restitution 0; MuJoCo 4, free-joint boxes,
 condim 3, friction 0.5 on every geom (MuJoCo takes the larger), pyramidal cones, default soft
@@ -115,8 +117,8 @@ def _stepper(step, steps: int, budget: float) -> tuple[float, int]:
     return time.perf_counter() - start, done
 
 
-def build_pointmass(scene: Scene) -> pm.World:
-    world = pm.World(gravity=(0.0, -G, 0.0))
+def build_pointmass(scene: Scene, sleep: bool = True) -> pm.World:
+    world = pm.World(gravity=(0.0, -G, 0.0), sleep=sleep)
     world.add(pm.Ground(restitution=0.0, friction=MU))
     if scene.pit is not None:
         for normal in ((1, 0, 0), (-1, 0, 0), (0, 0, 1), (0, 0, -1)):
@@ -127,10 +129,23 @@ def build_pointmass(scene: Scene) -> pm.World:
     return world
 
 
-def run_pointmass(scene: Scene, steps: int, budget: float):
-    world = build_pointmass(scene)
-    seconds, done = _stepper(lambda: world.step(DT), steps, budget)
+#: What the last pointmass run saw of sleeping: (engine name, note), printed under the table.
+SLEEP_NOTES: list[tuple[str, str]] = []
+
+
+def run_pointmass(scene: Scene, steps: int, budget: float, sleep: bool = True):
+    world = build_pointmass(scene, sleep)
+    asleep_since = [None]  # the time the last body fell asleep, if all still sleep
+
+    def step():
+        awake = world.step(DT).awake_bodies
+        asleep_since[0] = (asleep_since[0] or world.time) if awake == 0 else None
+
+    seconds, done = _stepper(step, steps, budget)
     b = world.bodies
+    since = "never all" if asleep_since[0] is None else f"all from t = {asleep_since[0]:.2f} s"
+    SLEEP_NOTES.append((f"pointmass{'' if sleep else ', sleep off'}",
+                        f"{int(b.awake.sum())}/{b.count} awake at the end; asleep: {since}"))
     return seconds, done, b.position.copy(), b.orientation.copy(), b.velocity.copy()
 
 
@@ -219,11 +234,14 @@ def run_mujoco(scene: Scene, steps: int, budget: float, solver: str = "Newton"):
 
 ENGINES = {
     "pointmass": run_pointmass,
+    "pointmass, sleep off": lambda scene, steps, budget: run_pointmass(scene, steps, budget,
+                                                                       sleep=False),
     "PyBullet (50 it)": run_pybullet,
     "MuJoCo Newton": run_mujoco,
     "MuJoCo CG": lambda scene, steps, budget: run_mujoco(scene, steps, budget, "CG"),
 }
-ALIASES = {"pointmass": "pointmass", "pybullet": "PyBullet (50 it)",
+ALIASES = {"pointmass": "pointmass", "pointmass-nosleep": "pointmass, sleep off",
+           "pybullet": "PyBullet (50 it)",
            "mujoco": "MuJoCo Newton", "mujoco-cg": "MuJoCo CG"}
 
 
@@ -333,7 +351,8 @@ def main() -> None:
     parser.add_argument("--scenes", nargs="+", default=["tower", "pyramid", "pit"],
                         choices=["tower", "pyramid", "pit"])
     parser.add_argument("--engines", nargs="+", default=list(ALIASES),
-                        choices=list(ALIASES), help="pointmass, pybullet, mujoco (Newton), "
+                        choices=list(ALIASES), help="pointmass, pointmass-nosleep (World("
+                        "sleep=False), the baseline of sleeping), pybullet, mujoco (Newton), "
                         "mujoco-cg")
     parser.add_argument("--repeats", type=int, default=1)
     parser.add_argument("--budget", type=float, default=300.0,
@@ -360,6 +379,7 @@ def main() -> None:
               f"(median of {args.repeats}; budget {args.budget:g} s a run)\n\n{HEADER}\n"
               + "|---" * 11 + "|", flush=True)
         base = None
+        SLEEP_NOTES.clear()
         for alias in args.engines:
             name = ALIASES[alias]
             try:
@@ -372,6 +392,8 @@ def main() -> None:
             last = runs[-1]
             m = measure(scene, last[2], last[3], last[4])
             print(row(name, last[1] + 1, last[1] == steps - 1, rate, base, n, m), flush=True)
+        for name, note in dict(SLEEP_NOTES).items():  # the last run of each
+            print(f"\n{name}: {note}", flush=True)
     sys.stdout.flush()
 
 

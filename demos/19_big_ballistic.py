@@ -112,6 +112,7 @@ def fire(scene: Scene, p: Params) -> None:
     b.inv_inertia_world[i] = world_inv_inertia(b.orientation[i], b.inv_inertia[i])
     b.size[i] = (radius, 0.0, 0.0)
     b.linear_damping[i] = damping
+    b.wake(i)  # written in place above, which does not wake a sleeping round
     h["kinds"][k] = p.ammo
     gravity.extra[k] = np.asarray(g) - GRAVITY
 

@@ -73,6 +73,22 @@ def particle_body_key(particle, body, feature):
             | (feature & (PARTICLE_FEATURE_LIMIT - 1)))
 
 
+def bodies_of_keys(keys):
+    """The two bodies (a (M,), b (M,), int64 arrays) each rigid-body key names: a body pair
+    (a, b); a body on a plane (a, −1); a particle on a body (−1, body); −1 for other keys."""
+    import numpy as np
+
+    keys = np.asarray(keys, dtype=np.int64)
+    mask = BODY_KEY_LIMIT - 1
+    is_body = (keys >= 0) & ((keys & _BODY_BIT) != 0)
+    on_particle = is_body & ((keys & _PARTICLE_BODY_BIT) != 0)
+    on_plane = is_body & ~on_particle & ((keys & _BODY_PLANE_BIT) != 0)
+    pair = is_body & ~on_particle & ~on_plane
+    a = np.where(pair | on_plane, (keys >> 34) & mask, -1)
+    b = np.where(pair, (keys >> 14) & mask, np.where(on_particle, (keys >> 38) & mask, -1))
+    return a, b
+
+
 def particle_of_key(key: int) -> int:
     """The particle of a particle–body key (``particle_body_key``)."""
     return (int(key) >> 3) & (PARTICLE_KEY_LIMIT - 1)

@@ -13,6 +13,7 @@ from .collide import Plane
 from .contacts import ContactBuffer, ContactGenerator, friction_value, restitution_value
 from .forces import ForceGenerator, drag_force, fold
 from .particles import CHUNK, PARALLEL_MIN_PARTICLES, Particles, energy_chunk
+from .rigid import sleep as sleeping
 from .rigid.bodies import Bodies, Body
 from .rigid.collide import generate as generate_body_contacts
 from .rigid.contacts import BodyContacts
@@ -38,6 +39,7 @@ class StepStats:
         position_passes: Projection passes (all substeps).
         body_contacts: Rigid-body contact points in the last substep (speculative included),
             particle–body points among them.
+        awake_bodies: Movable rigid bodies awake after the step (the rest sleep).
     """
 
     contacts: int
@@ -48,6 +50,7 @@ class StepStats:
     velocity_passes: int = 0
     position_passes: int = 0
     body_contacts: int = 0
+    awake_bodies: int = 0
 
 
 
@@ -185,6 +188,11 @@ class World:
         restitution_threshold: Closing speeds below this [m/s] do not bounce. 0 by default:
             the resting-contact trick keeps piles still without hiding any inelasticity.
         substeps: Substeps per ``step``; each runs the whole pipeline with dt / substeps.
+        sleep: Whether rigid bodies sleep: an island of touching bodies none of whose points
+            has gone 2.5 cm in 0.5 s (0.05 m/s) stops being integrated and solved until a
+            moving body touches it, a particle hits it, a force pushes it or the user moves
+            it (``rigid/islands.py``, ``rigid/sleep.py``). On by default; False gives every
+            body a full step always (bit for bit the trajectory of an engine without sleep).
 
     Example:
         >>> import pointmass as pm
@@ -197,7 +205,7 @@ class World:
 
     def __init__(self, gravity=(0.0, -9.81, 0.0), *, iterations: int | None = None,
                  resolver: str = "sequential", restitution_threshold: float = 0.0,
-                 substeps: int = 1) -> None:
+                 substeps: int = 1, sleep: bool = True) -> None:
         self.particles = Particles()
         #: Rigid bodies (``add_body``); they meet each other, every ``Plane``/``Ground`` and every
         #: particle with radius > 0 (``rigid/particle_body.py``).
@@ -206,6 +214,12 @@ class World:
         #: The warm start of rigid-body contact points (clear it with ``impulses``).
         self.body_impulses = ImpulseHistory()
         self._body_rows = None
+        #: The warm start of sleeping bodies' contact points, given back when they wake.
+        self.sleeping_impulses = sleeping.SleepingImpulses()
+        #: Body pairs (K, 2) that must share an island (joints): they sleep and wake together.
+        self.island_links = np.zeros((0, 2), np.int64)
+        self._wakes_seen = 0
+        self.sleep = sleep
         #: The particles' surface against rigid bodies (every particle with radius > 0 meets
         #: every body): a contact uses √(μp·μb) and max(ep, eb), as between two bodies. The
         #: defaults are ``add_body``'s, so a particle meets a body as a default body would.
@@ -278,6 +292,25 @@ class World:
         if isinstance(value, bool) or not isinstance(value, int) or not 1 <= value <= 1000:
             raise ValueError(f"substeps must be an int in [1, 1000], got {value!r}")
         self._substeps = value
+
+    @property
+    def sleep(self) -> bool:
+        """Whether still islands of rigid bodies sleep (see the class docstring); turning it
+        off wakes every body."""
+        return self._sleep
+
+    @sleep.setter
+    def sleep(self, value: bool) -> None:
+        if not isinstance(value, (bool, np.bool_)):
+            raise TypeError(f"sleep must be True or False, got {value!r}")
+        self._sleep = bool(value)
+        if not value:
+            self._wake_all()
+
+    def _wake_all(self) -> None:
+        b = self.bodies
+        if not b.awake.all():
+            b.wake_islands(np.unique(b.island[~b.awake]))
 
     @property
     def restitution_threshold(self) -> float:
@@ -424,9 +457,11 @@ class World:
         # the earlier substeps are undone from a copy.
         self._folded = fold(self.forces, self._gravity)
         self._jump_check = needs_jump_check(self._folded[0])
+        if not self._sleep:
+            self._wake_all()  # bodies put to sleep by hand while sleeping is off
         saved = (self.particles.snapshot(), self.time, self.impulses.snapshot(),
-                 self.bodies.snapshot(), self.body_impulses.snapshot()) \
-            if self._substeps > 1 else None
+                 self.bodies.snapshot(), self.body_impulses.snapshot(),
+                 self.sleeping_impulses.snapshot()) if self._substeps > 1 else None
         iterations = velocity_passes = position_passes = 0
         try:
             for _ in range(self._substeps):
@@ -441,15 +476,20 @@ class World:
                 self.impulses.restore(saved[2])
                 self.bodies.restore(saved[3])
                 self.body_impulses.restore(saved[4])
+                self.sleeping_impulses.restore(saved[5])
             raise
         self.time += float(dt)
         if self.bodies.count:
             self.bodies.clear_accumulators()  # user forces and torques last one step
+        if self._sleep and self.bodies.count:
+            self._fall_asleep(float(dt))
         pen = self.contacts.penetration
         energy = (self.particles.kinetic_energy() if self._energy is None
                   else self._energy)
-        if self.bodies.count:
-            energy += self.bodies.kinetic_energy()
+        b = self.bodies
+        awake = int(np.count_nonzero(b.awake & (b.inv_mass > 0))) if b.count else 0
+        if b.count and b.awake.any():  # every body asleep: all velocities are 0
+            energy += b.kinetic_energy()
         deepest = float(pen.max()) if pen.size and pen.max() > 0 else 0.0
         rows = self._body_rows
         if rows is not None:
@@ -464,7 +504,7 @@ class World:
         return StepStats(contacts=self.contacts.count, iterations=iterations,
                          max_penetration=deepest, kinetic_energy=energy, mode=self.solver.mode,
                          velocity_passes=velocity_passes, position_passes=position_passes,
-                         body_contacts=self.body_contacts.count)
+                         body_contacts=self.body_contacts.count, awake_bodies=awake)
 
     def _substep(self, dt: float) -> SolveStats:
         p = self.particles
@@ -525,7 +565,8 @@ class World:
         body stage on velocities, drift (x += v·dt, the free rotation), then its position
         half. Particles with a radius that touch a body join the stage as bodies without
         inertia (``rigid/particle_body.py``); with none touching, the stage sees the bodies
-        alone, as in a world without particles."""
+        alone, as in a world without particles. Sleeping bodies are skipped throughout
+        (``rigid/sleep.py``)."""
         b = self.bodies
         kept = None
         if self.body_forces:  # generators add to the user's forces for this substep only
@@ -536,19 +577,18 @@ class World:
             except BaseException:
                 b.force[:], b.torque[:] = kept
                 raise
+        if self._sleep:
+            sleeping.wake_pushed(b)
         p = self.particles
         w = b.inv_mass[:, None]
         # what this substep's forces alone give each body, for the resting-contact trick
         acc = np.where(w > 0.0, self._gravity + b.force * w, 0.0)
-        integrate_velocities(b.velocity, b.angular_velocity, b.force, b.torque, b.inv_mass,
-                             b.inv_inertia, b.inv_inertia_world, b.linear_damping,
-                             b.angular_damping, self._gravity, dt)
-        if kept is not None:
-            b.force[:], b.torque[:] = kept
-        planes = [g for g in self.contact_generators if isinstance(g, Plane)]
-        generate_body_contacts(b, planes, dt, self.body_contacts)
-        packed = add_particle_contacts(b, p, dt, self.body_contacts, self._particle_friction,
-                                       self._particle_restitution)
+        try:  # the kick, and that of bodies woken while finding contacts, read the forces
+            self._kick(dt, b.awake)
+            packed, acc = self._body_contacts(dt, acc)
+        finally:
+            if kept is not None:
+                b.force[:], b.torque[:] = kept
         if packed is None:
             rows = self.solver.solve_bodies(b, self.body_contacts, acc, self.body_impulses, dt)
         else:
@@ -557,7 +597,7 @@ class World:
                                             self.body_impulses, dt)
             packed.take_velocities(b, p, dt)
         bad = integrate_positions(b.position, b.orientation, b.velocity, b.angular_velocity,
-                                  b.inv_inertia, b.inv_inertia_world, dt)
+                                  b.inv_inertia, b.inv_inertia_world, dt, b.awake)
         if bad >= 0:
             raise FloatingPointError(
                 f"body {bad} became non-finite at t = {self.time:.6g} s (position "
@@ -570,6 +610,50 @@ class World:
             packed.take_positions(b, p)
         self._body_rows = rows
         return rows
+
+    def _kick(self, dt: float, which: np.ndarray) -> None:
+        """The velocity half of the bodies' integration, for the bodies of mask ``which``."""
+        b = self.bodies
+        integrate_velocities(b.velocity, b.angular_velocity, b.force, b.torque, b.inv_mass,
+                             b.inv_inertia, b.inv_inertia_world, b.linear_damping,
+                             b.angular_damping, self._gravity, dt, which)
+
+    def _body_contacts(self, dt: float, acc: np.ndarray):
+        """This substep's body rows, then the particle–body rows; returns the packed view (or
+        None) and ``acc`` extended to it. A sleeping island that a row wakes gets its kick and
+        the rows are made again, until no row touches a sleeping body that should wake."""
+        b = self.bodies
+        p = self.particles
+        planes = [g for g in self.contact_generators if isinstance(g, Plane)]
+        links = sleeping.check_links(self.island_links, b.count) if self._sleep else None
+        while True:
+            if b.wakes != self._wakes_seen:  # islands woke (here, or by hand since)
+                self._wakes_seen = b.wakes
+                self.sleeping_impulses.give_back(self.body_impulses, b.awake)
+            live = sleeping.active(b) if self._sleep and not b.awake.all() else None
+            if live is not None and not live.any():  # all asleep or still: nothing to find
+                self.body_contacts.resize(0)
+            else:
+                generate_body_contacts(b, planes, dt, self.body_contacts, active=live)
+            packed = add_particle_contacts(b, p, dt, self.body_contacts, self._particle_friction,
+                                           self._particle_restitution)
+            full = acc if packed is None else np.concatenate(
+                [acc, p.acceleration[packed.selected]])
+            if live is None:
+                return packed, full
+            woken = sleeping.touched(b, self.body_contacts, packed, full, dt, links, live)
+            if not woken.any():
+                sleeping.leave_sleepers_out(b, self.body_contacts, packed)
+                return packed, full
+            self._kick(dt, b.wake_islands(np.unique(b.island[woken])))
+
+    def _fall_asleep(self, dt: float) -> None:
+        """End of a step: islands still for long enough fall asleep (``rigid/sleep.py``)."""
+        b = self.bodies
+        links = sleeping.check_links(self.island_links, b.count)
+        slept = sleeping.fall_asleep(b, self.body_contacts, links, dt)
+        if slept is not None:
+            self.sleeping_impulses.put_away(self.body_impulses, slept)
 
     # -- measurements ---------------------------------------------------------------------------
     def kinetic_energy(self) -> float:

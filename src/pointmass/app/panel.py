@@ -150,6 +150,11 @@ class Panel:
         changed, n = imgui.slider_int("substeps", world.substeps, 1, 20)
         if changed:
             host.set_world("substeps", n)
+        if world.bodies.count:
+            changed, on = imgui.checkbox("sleep", world.sleep)
+            imgui.set_item_tooltip("still islands of rigid bodies stop until touched or pushed")
+            if changed:
+                host.set_world("sleep", on)
         changed, scale = imgui.slider_float("time scale", host.clock.time_scale, 0.05, 8.0,
                                             "%.2fx", imgui.SliderFlags_.logarithmic)
         if changed:
@@ -170,6 +175,8 @@ class Panel:
             ("panel per frame", f"{s.gui_ms:.2f} ms"),
             ("particles", particle_count(scene)
              + (f"  (+ {bodies} rigid bodies)" if bodies else "")),
+            *((("bodies awake", f"{last.awake_bodies}"),) if bodies and last is not None
+              else ()),
             ("contacts", f"{contacts}" + (f"  ({last.mode})" if last is not None else "")),
             ("kinetic energy", f"{world.kinetic_energy():.4g} J"),
             ("potential energy", f"{world.potential_energy():.4g} J"),

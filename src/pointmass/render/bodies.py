@@ -19,16 +19,24 @@ BODY_PALETTE = np.array([(0.86, 0.56, 0.28), (0.80, 0.42, 0.30), (0.90, 0.70, 0.
 STATIC_COLOR = (0.55, 0.57, 0.60)
 #: Sphere bodies stand out from the boxes they hit.
 SPHERE_COLOR = (0.30, 0.50, 0.85)
+#: Sleeping bodies (``World(sleep=True)``) are drawn this much of the way to ``ASLEEP_COLOR``
+#: (Cyclone's explosion demo colours awake and asleep bodies apart; Box2D greys sleepers).
+ASLEEP_TINT = 0.45
+ASLEEP_COLOR = np.array((0.42, 0.48, 0.60))
 #: The spin markers: radius as a fraction of the sphere's, and their colors (x, y, z axes).
 MARKER_SCALE = 0.16
 MARKER_COLORS = np.array([(0.95, 0.30, 0.20), (0.30, 0.85, 0.35), (0.95, 0.95, 0.95)])
 
 
 def body_colors(bodies) -> np.ndarray:
-    """(N, 3) colors: the palette for movable bodies, grey for static ones."""
+    """(N, 3) colors: the palette for movable bodies (spheres ``SPHERE_COLOR``), grey for
+    static ones, tinted toward ``ASLEEP_COLOR`` while asleep."""
     n = bodies.count
     out = BODY_PALETTE[np.arange(n) % len(BODY_PALETTE)].copy()
+    out[bodies.shape[:n] == SPHERE] = SPHERE_COLOR
     out[bodies.inv_mass[:n] == 0.0] = STATIC_COLOR
+    asleep = ~bodies.awake[:n]
+    out[asleep] += ASLEEP_TINT * (ASLEEP_COLOR - out[asleep])
     return out
 
 
@@ -54,8 +62,7 @@ def sphere_rows(bodies, floats: int) -> tuple[np.ndarray, np.ndarray]:
     pos, r = bodies.position[idx], bodies.size[idx, 0]
     balls[:, 0:3] = pos
     balls[:, 3] = r
-    balls[:, 4:7] = np.where((bodies.inv_mass[idx] == 0.0)[:, None], STATIC_COLOR,
-                             SPHERE_COLOR)
+    balls[:, 4:7] = body_colors(bodies)[idx]
     for k, i in enumerate(idx):
         axes = world_rotation(bodies.orientation[i])       # columns: the body's axes
         rows = markers[3 * k: 3 * k + 3]

@@ -8,5 +8,6 @@ broadphase: sort and sweep on AABBs; contacts: ``BodyContacts``, the solver's ro
 pairs and planes through the narrow phase. The solver's body stage is in
 ``pointmass.solver.body_stages`` / ``body_solver`` / ``body_direct``. forces: body force
 generators (springs on both ends, aero on the point velocity, buoyancy, explosion, user
-callables) for ``World.add``.
+callables) for ``World.add``. islands: union–find over touching bodies and the still-timers;
+sleep: what wakes an island and the warm start a sleeping island keeps (``World(sleep=True)``).
 """

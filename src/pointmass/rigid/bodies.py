@@ -22,6 +22,9 @@ from .shapes import NONE, Box, Sphere, mass_properties
 
 _FIELDS_3 = ("position", "velocity", "angular_velocity", "force", "torque", "inv_inertia", "size")
 _FIELDS_1 = ("inv_mass", "linear_damping", "angular_damping", "friction", "restitution")
+#: Sleep state (``islands.py``, ``sleep.py``): kept in snapshots like the rest.
+_SLEEP_FIELDS = ("awake", "sleep_time", "island", "still_position", "still_orientation")
+_DTYPES = {"shape": np.int64, "island": np.int64, "awake": np.bool_}
 
 
 class Bodies:
@@ -45,10 +48,22 @@ class Bodies:
         restitution: Coefficient of restitution in [0, 1], shape (N,); a contact uses the larger.
         shape: Shape kind per body (``shapes.NONE``, ``SPHERE``, ``BOX``), shape (N,), int64.
         size: Sphere radius in column 0, or box half-extents [m], shape (N, 3).
+        awake: Whether each body moves, shape (N,), bool. A sleeping body (``World(sleep=
+            True)``, ``rigid/islands.py``) has zero velocity, is not integrated and is in no
+            contact with another sleeping body or the scenery, until something wakes its
+            island. Immovable bodies are always awake.
+        sleep_time: Seconds each awake body has been still [s], shape (N,).
+        still_position, still_orientation: The pose its still-time counts from, shapes (N, 3)
+            and (N, 4): moving far from it restarts the count (``islands.still_timers``).
+        island: The island a sleeping body fell asleep with (its lowest body index), or -1
+            while awake, shape (N,), int64: waking one body wakes all of it.
     """
 
     def __init__(self, capacity: int = 16) -> None:
         self._count = 0
+        #: How many times islands were woken (the world gives their warm start back when
+        #: this changes, ``rigid/sleep.py``).
+        self.wakes = 0
         self._alloc(max(int(capacity), 1))
 
     # -- storage -------------------------------------------------------------------------------
@@ -57,9 +72,10 @@ class Bodies:
         shapes = dict.fromkeys(_FIELDS_3, (capacity, 3))
         shapes.update(dict.fromkeys(_FIELDS_1, (capacity,)))
         shapes.update(orientation=(capacity, 4), inv_inertia_world=(capacity, 3, 3),
-                      shape=(capacity,))
+                      shape=(capacity,), **dict.fromkeys(_SLEEP_FIELDS[:3], (capacity,)),
+                      still_position=(capacity, 3), still_orientation=(capacity, 4))
         for name, shape in shapes.items():
-            arr = np.zeros(shape, dtype=np.int64 if name == "shape" else np.float64)
+            arr = np.zeros(shape, dtype=_DTYPES.get(name, np.float64))
             old = getattr(self, "_" + name, None)
             if old is not None:
                 arr[:n] = old[:n]
@@ -92,6 +108,11 @@ class Bodies:
     restitution = _view("restitution", "Coefficient of restitution in [0, 1], (N,).")
     shape = _view("shape", "Shape kind, (N,).")
     size = _view("size", "Radius or half-extents [m], (N, 3).")
+    awake = _view("awake", "Whether each body moves (not asleep), (N,) bool.")
+    sleep_time = _view("sleep_time", "Seconds each awake body has been still [s], (N,).")
+    island = _view("island", "A sleeping body's island (lowest index), -1 awake, (N,).")
+    still_position = _view("still_position", "Where the still-time counts from [m], (N, 3).")
+    still_orientation = _view("still_orientation", "The orientation it counts from, (N, 4).")
     del _view
 
     # -- adding --------------------------------------------------------------------------------
@@ -164,6 +185,11 @@ class Bodies:
         self._restitution[i] = rest
         self._shape[i] = kind
         self._size[i] = size
+        self._awake[i] = True
+        self._sleep_time[i] = 0.0
+        self._island[i] = -1
+        self._still_position[i] = pos
+        self._still_orientation[i] = quat
         return i
 
     def add_sphere(self, radius: float, position=(0.0, 0.0, 0.0), velocity=(0.0, 0.0, 0.0),
@@ -211,25 +237,61 @@ class Bodies:
 
     # -- forces --------------------------------------------------------------------------------
     def add_force(self, index: int, force) -> None:
-        """Add a force [N] through the centre of mass (no torque)."""
-        self._force[self.check_index(index)] += check.vec3(force, "force")
+        """Add a force [N] through the centre of mass (no torque); wakes the body."""
+        i = self.check_index(index)
+        self._force[i] += check.vec3(force, "force")
+        self.wake(i)
 
     def add_torque(self, index: int, torque) -> None:
-        """Add a torque [N m] about the centre of mass."""
-        self._torque[self.check_index(index)] += check.vec3(torque, "torque")
+        """Add a torque [N m] about the centre of mass; wakes the body."""
+        i = self.check_index(index)
+        self._torque[i] += check.vec3(torque, "torque")
+        self.wake(i)
 
     def add_force_at_point(self, index: int, force, point) -> None:
         """Add a force [N] acting at a world ``point`` [m]: the force, plus the torque
-        (point − centre) × force."""
+        (point − centre) × force; wakes the body."""
         i = self.check_index(index)
         f = check.vec3(force, "force")
         r = check.vec3(point, "point") - self._position[i]
         self._force[i] += f
         self._torque[i] += np.cross(r, f)
+        self.wake(i)
 
+    # -- sleep ---------------------------------------------------------------------------------
+    def wake(self, index: int) -> None:
+        """Wake body ``index`` and, if it was asleep, every body of its island; its still-time
+        starts again from 0 (a body being pushed does not fall asleep)."""
+        i = self.check_index(index)
+        self._sleep_time[i] = 0.0
+        if not self._awake[i]:
+            self.wake_islands(np.array([self._island[i]]))
+
+    def wake_islands(self, islands: np.ndarray) -> np.ndarray:
+        """Wake every sleeping body whose island is in ``islands`` (int array); their
+        still-times start from 0. Returns the mask (N,) of the bodies woken."""
+        woken = ~self.awake & np.isin(self.island, islands)
+        self.wakes += 1
+        self.awake[woken] = True
+        self.sleep_time[woken] = 0.0
+        self.island[woken] = -1
+        return woken
+
+    def sleep(self, index: int) -> None:
+        """Put body ``index`` to sleep alone, now (an island of its own; a contact with an awake
+        body wakes it). An immovable body never sleeps: ValueError."""
+        i = self.check_index(index)
+        if self._inv_mass[i] == 0.0:
+            raise ValueError(f"body {i} is immovable (infinite mass): it never sleeps")
+        if self._awake[i]:
+            self._awake[i] = False
+            self._island[i] = i
+            self._velocity[i] = 0.0
+            self._angular_velocity[i] = 0.0
     def snapshot(self) -> dict[str, np.ndarray]:
         """Copies of every array, to restore with ``restore`` (a reset, an undone step)."""
-        names = (*_FIELDS_3, *_FIELDS_1, "orientation", "inv_inertia_world", "shape")
+        names = (*_FIELDS_3, *_FIELDS_1, "orientation", "inv_inertia_world", "shape",
+                 *_SLEEP_FIELDS)
         return {name: getattr(self, name).copy() for name in names}
 
     def restore(self, snap: dict[str, np.ndarray]) -> None:
@@ -238,6 +300,12 @@ class Bodies:
         if n > self._capacity:
             self._alloc(n)
         self._count = n
+        if "awake" not in snap:  # a snapshot from before sleeping: every body awake
+            self._awake[:n] = True
+            self._sleep_time[:n] = 0.0
+            self._island[:n] = -1
+            self._still_position[:n] = snap["position"]
+            self._still_orientation[:n] = snap["orientation"]
         for name, arr in snap.items():
             getattr(self, "_" + name)[:n] = arr
 
@@ -337,12 +405,13 @@ class Body:
 
     @property
     def position(self) -> np.ndarray:
-        """Centre of mass [m], a writable view (3,)."""
+        """Centre of mass [m], a writable view (3,); assigning it wakes the body."""
         return self.bodies.position[self.index]
 
     @position.setter
     def position(self, value) -> None:
         self.bodies.position[self.index] = check.vec3(value, "position")
+        self.bodies.wake(self.index)
 
     @property
     def orientation(self) -> np.ndarray:
@@ -356,6 +425,7 @@ class Body:
         i = self.index
         self.bodies.orientation[i] = q
         self.bodies.inv_inertia_world[i] = world_inv_inertia(q, self.bodies.inv_inertia[i])
+        self.bodies.wake(i)
 
     @property
     def velocity(self) -> np.ndarray:
@@ -365,6 +435,7 @@ class Body:
     @velocity.setter
     def velocity(self, value) -> None:
         self.bodies.velocity[self.index] = check.vec3(value, "velocity")
+        self.bodies.wake(self.index)
 
     @property
     def angular_velocity(self) -> np.ndarray:
@@ -374,6 +445,24 @@ class Body:
     @angular_velocity.setter
     def angular_velocity(self, value) -> None:
         self.bodies.angular_velocity[self.index] = check.vec3(value, "angular_velocity")
+        self.bodies.wake(self.index)
+
+    @property
+    def awake(self) -> bool:
+        """Whether the body moves; set False to put it to sleep now (alone: a contact with an
+        awake body wakes it), True to wake it and its island. Assigning ``position``,
+        ``orientation``, ``velocity`` or ``angular_velocity`` through this handle wakes it too
+        (writing into the arrays in place does not)."""
+        return bool(self.bodies.awake[self.index])
+
+    @awake.setter
+    def awake(self, value: bool) -> None:
+        if not isinstance(value, (bool, np.bool_)):
+            raise TypeError(f"awake must be True or False, got {value!r}")
+        if value:
+            self.bodies.wake(self.index)
+        else:
+            self.bodies.sleep(self.index)
 
     @property
     def mass(self) -> float:

@@ -132,15 +132,22 @@ def plane_contacts(pos, quat, shape, size, inv_mass, friction, restitution, reac
 
 
 def generate(bodies, planes, dt: float, contacts: BodyContacts,
-             margin: float = SPECULATIVE_MARGIN) -> None:
+             margin: float = SPECULATIVE_MARGIN, active: np.ndarray | None = None) -> None:
     """Fill ``contacts`` with every body–body and body–plane point of ``bodies`` (a
     ``Bodies``) for a step of ``dt`` [s]; ``planes`` is a sequence of ``pointmass.Plane``
-    (its normal, offset, friction, restitution; the particle selection does not apply)."""
+    (its normal, offset, friction, restitution; the particle selection does not apply).
+    With ``active`` (N,) bool (sleeping, ``islands.py``), only pairs with an active body and
+    active bodies on planes are narrow-phased: sleeping and static bodies are left alone."""
     b = bodies
     if b.count > BODY_KEY_LIMIT:
         raise ValueError(f"at most {BODY_KEY_LIMIT} bodies collide (contact keys have 20 bits "
                          f"for a body), got {b.count}")
     first, second, reach = find_pairs(b, margin, dt)
+    on_planes = b.inv_mass
+    if active is not None:
+        live = active[first] | active[second]
+        first, second = first[live], second[live]
+        on_planes = np.where(active, b.inv_mass, 0.0)  # the plane kernel skips w = 0
     n_planes = len(planes)
     contacts.resize(MAX_POINTS * (first.shape[0] + b.count * n_planes))
     c = contacts
@@ -153,7 +160,7 @@ def generate(bodies, planes, dt: float, contacts: BodyContacts,
         plane_mu = np.array([p.friction for p in planes], dtype=np.float64)
         plane_e = np.array([p.restitution for p in planes], dtype=np.float64)
         serial = np.array([p.serial for p in planes], dtype=np.int64)
-        count = plane_contacts(b.position, b.orientation, b.shape, b.size, b.inv_mass,
+        count = plane_contacts(b.position, b.orientation, b.shape, b.size, on_planes,
                                b.friction, b.restitution, reach, margin, plane_n, plane_d,
                                plane_mu, plane_e, serial, count, *out)
     contacts.trim(count)

@@ -52,5 +52,11 @@ class BodyContacts:
         for name in ("a", "b", "normal", "r_a", "r_b", "depth", "friction", "restitution", "key"):
             setattr(self, name, getattr(self, name)[:count])
 
+    def keep(self, rows: np.ndarray) -> None:
+        """Keep only the rows where the mask ``rows`` (count,) is True, in order."""
+        self.count = int(np.count_nonzero(rows))
+        for name in ("a", "b", "normal", "r_a", "r_b", "depth", "friction", "restitution", "key"):
+            setattr(self, name, getattr(self, name)[rows])
+
     def __len__(self) -> int:
         return self.count

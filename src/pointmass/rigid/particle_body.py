@@ -132,6 +132,15 @@ class Packed:
         self.position = np.concatenate([b.position, origin])
         self.velocity = np.concatenate([b.velocity, particles.velocity[selected]])
         self.angular_velocity = np.concatenate([b.angular_velocity, np.zeros((k, 3))])
+        #: Sleeping bodies that particles rest on, immovable in this view (``freeze``).
+        self.frozen: np.ndarray | None = None
+
+    def freeze(self, frozen: np.ndarray) -> None:
+        """Make the bodies of mask ``frozen`` (N,) immovable in this view (sleeping bodies a
+        particle rests on: it pushes against them as against scenery, ``islands.py``)."""
+        self.frozen = frozen
+        self.inv_mass[: frozen.shape[0]][frozen] = 0.0
+        self.inv_inertia_world[: frozen.shape[0]][frozen] = 0.0
 
     def take_velocities(self, bodies, particles, dt: float) -> None:
         """After the velocity rows: the bodies' v, ω back; each particle drifts again with its
@@ -151,13 +160,16 @@ class Packed:
         self.position[n:] = particles.position[self.selected]
         self.orientation[:n] = bodies.orientation
         self.inv_inertia_world[:n] = bodies.inv_inertia_world
+        if self.frozen is not None:
+            self.inv_inertia_world[:n][self.frozen] = 0.0
 
     def take_positions(self, bodies, particles) -> None:
         """After the position rows: positions (and the bodies' turns) back."""
         n = bodies.count
         bodies.position[:] = self.position[:n]
         bodies.orientation[:] = self.orientation[:n]
-        bodies.inv_inertia_world[:] = self.inv_inertia_world[:n]
+        live = slice(None) if self.frozen is None else ~self.frozen
+        bodies.inv_inertia_world[live] = self.inv_inertia_world[:n][live]
         particles.position[self.selected] = self.position[n:]
 
 

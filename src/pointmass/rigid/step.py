@@ -28,12 +28,14 @@ MAX_ROTATION = 0.25 * math.pi
 
 @njit(cache=True, nogil=True)
 def integrate_velocities(vel, ang, force, torque, inv_mass, inv_inertia, inv_inertia_world,
-                         lin_damping, ang_damping, g, dt):
-    """The kick for every body. Gravity g [m/s²] (3,) acts only on bodies of finite mass, and a
-    torque only about axes of finite inertia; bodies of infinite mass keep their velocity
-    (kinematic)."""
+                         lin_damping, ang_damping, g, dt, awake):
+    """The kick for every body with ``awake`` (N,) True (a sleeping body keeps v = ω = 0).
+    Gravity g [m/s²] (3,) acts only on bodies of finite mass, and a torque only about axes of
+    finite inertia; bodies of infinite mass keep their velocity (kinematic)."""
     cap = MAX_ROTATION / dt
     for i in range(vel.shape[0]):
+        if not awake[i]:
+            continue
         w = inv_mass[i]
         if w > 0.0:
             keep = lin_damping[i] ** dt if lin_damping[i] < 1.0 else 1.0
@@ -59,10 +61,13 @@ def integrate_velocities(vel, ang, force, torque, inv_mass, inv_inertia, inv_ine
 
 
 @njit(cache=True, nogil=True)
-def integrate_positions(pos, quat, vel, ang, inv_inertia, inv_inertia_world, dt):
-    """The drift for every body; returns the first body that is not finite afterwards, or -1."""
+def integrate_positions(pos, quat, vel, ang, inv_inertia, inv_inertia_world, dt, awake):
+    """The drift for every body with ``awake`` (N,) True (a sleeping body stays exactly where
+    it is); returns the first body that is not finite afterwards, or -1."""
     bad = -1
     for i in range(pos.shape[0]):
+        if not awake[i]:
+            continue
         pos[i, 0] += vel[i, 0] * dt
         pos[i, 1] += vel[i, 1] * dt
         pos[i, 2] += vel[i, 2] * dt
@@ -94,16 +99,16 @@ def integrate_positions(pos, quat, vel, ang, inv_inertia, inv_inertia_world, dt)
 
 def step(bodies: Bodies, dt: float, gravity=(0.0, 0.0, 0.0)) -> None:
     """Advance free bodies by ``dt`` [s] > 0 under their accumulated forces and torques and
-    ``gravity`` [m/s²]; clears the accumulators. Raises FloatingPointError naming the first body
-    that is no longer finite."""
+    ``gravity`` [m/s²] (sleeping bodies stay put: ``Bodies.awake``); clears the accumulators.
+    Raises FloatingPointError naming the first body that is no longer finite."""
     dt = check.scalar(dt, "dt", low=0.0, low_open=True)
     g = check.vec3(gravity, "gravity")
     b = bodies
     integrate_velocities(b.velocity, b.angular_velocity, b.force, b.torque, b.inv_mass,
                          b.inv_inertia, b.inv_inertia_world, b.linear_damping,
-                         b.angular_damping, g, dt)
+                         b.angular_damping, g, dt, b.awake)
     bad = integrate_positions(b.position, b.orientation, b.velocity, b.angular_velocity,
-                              b.inv_inertia, b.inv_inertia_world, dt)
+                              b.inv_inertia, b.inv_inertia_world, dt, b.awake)
     b.clear_accumulators()
     if bad >= 0:
         raise FloatingPointError(f"body {bad} is no longer finite after a step of {dt} s")

@@ -66,6 +66,35 @@ class ImpulseHistory:
     def restore(self, snap: tuple) -> None:
         self._keys, self._normal, self._tangent = snap
 
+    @property
+    def keys(self) -> np.ndarray:
+        """The keys kept, sorted (M,), int64 (read only)."""
+        return self._keys
+
+    def pick(self, rows: np.ndarray) -> ImpulseHistory:
+        """A new history with the entries where ``rows`` (bool, one per key) is True."""
+        out = ImpulseHistory()
+        out._keys = self._keys[rows]
+        out._normal = self._normal[rows]
+        out._tangent = self._tangent[rows] if self._tangent is not None else None
+        return out
+
+    def merge(self, other: ImpulseHistory) -> None:
+        """Add ``other``'s entries (a key kept in both keeps this history's impulses): the
+        warm start of bodies that wake joins that of the bodies already awake."""
+        if len(other) == 0:
+            return
+        new = ~np.isin(other._keys, self._keys)
+        keys = np.concatenate([self._keys, other._keys[new]])
+        normal = np.concatenate([self._normal, other._normal[new]])
+        tangents = [t if t is not None else np.zeros((len(h), 3))
+                    for h, t in ((self, self._tangent), (other, other._tangent))]
+        tangent = None if self._tangent is None and other._tangent is None else \
+            np.concatenate([tangents[0], tangents[1][new]])
+        order = np.argsort(keys, kind="stable")
+        self._keys, self._normal = keys[order], normal[order]
+        self._tangent = tangent[order] if tangent is not None else None
+
     def recall(self, keys: np.ndarray, normal: np.ndarray, tangent: np.ndarray) -> None:
         """Fill ``normal`` (M,) and ``tangent`` (M, 3) with the impulses kept for ``keys`` (0
         for a contact that is new or has no key)."""

@@ -1,6 +1,6 @@
 """Regression tests for Cyclone's rigid-body bugs (rigid-notes.md §1.8, R1–R11), one or more
-each, for those the rigid half covers so far. Not yet covered: R3 aero and R4 springs (rigid
-force generators), R6 sleeping, R11 joints.
+each, for those the rigid half covers so far. Not yet covered here: R3 aero and R4 springs
+(rigid force generators), R11 joints. R6 (sleeping) has more in test_sleep.py.
 """
 
 import math
@@ -59,6 +59,41 @@ def test_r5_mass_properties_come_from_the_shape():
     assert box.inertia == pytest.approx(mass / 3 * np.array([1.0 + 2.25, 0.25 + 2.25, 0.25 + 1.0]))
     ball = world.add_body(Sphere(0.5), mass=4.0)
     assert ball.inertia == pytest.approx([0.4 * 4.0 * 0.25] * 3)
+
+
+@pytest.mark.parametrize(("spin", "sleeps"), [(0.04, False), (0.02, True)])
+def test_r6_sleep_speed_is_the_fastest_point_in_metres_per_second(spin, sleeps):
+    """R6, units: Cyclone compares v·v + ω·ω (m²/s² + rad²/s²) with 0.3. Here how far the
+    body's points go, |Δx| + extent·θ, is compared with 0.05 m/s × 0.5 s: a 2 m cube (extent
+    √3 m) turning at 0.04 rad/s moves its corners at 0.069 m/s and stays awake; at 0.02 rad/s
+    (0.035 m/s) it sleeps after 0.5 s. Cyclone would put both to sleep."""
+    world = _free_world()
+    body = world.add_body(Box((1.0, 1.0, 1.0)), angular_velocity=(0.0, spin, 0.0), mass=1.0)
+    for _ in range(120):
+        world.step(DT)
+    assert body.awake is not sleeps
+    assert spin * spin < 0.3  # below Cyclone's sleepEpsilon: it would sleep there
+
+
+def test_r6_a_stack_sleeps_and_wakes_as_one_island_also_from_the_world():
+    """R6: Cyclone sleeps each body alone (a stack's bottom sleeps under a moving top) and
+    wakes only body–body partners. Here the three boxes fall asleep in the same step, and a
+    moving immovable body (a kinematic pusher, part of the world) wakes all three by touching
+    the bottom one."""
+    world = pm.World()
+    world.add(pm.Ground())
+    boxes = [world.add_body(Box((0.5, 0.5, 0.5)), (0.0, 0.5 + k, 0.0), mass=1.0)
+             for k in range(3)]
+    for _ in range(120):
+        world.step(DT)
+        awake = [b.awake for b in boxes]
+        assert all(awake) or not any(awake)
+    assert not any(awake)
+    world.add_body(Box((0.1, 0.2, 1.0)), (-0.61, 0.2, 0.0), mass=math.inf,
+                   velocity=(0.5, 0.0, 0.0))
+    for _ in range(3):  # 1 cm to go at 0.5 m/s: it closes in during the second step
+        world.step(DT)
+    assert all(b.awake for b in boxes)
 
 
 def test_r7_a_box_resting_on_a_box_gets_four_points_on_the_face():
