@@ -221,3 +221,4 @@ def _restore_world_state(world, state: tuple) -> None:
     world.time = time
     world.impulses.clear()
     world.body_impulses.clear()
+    world.joints.clear_impulses()

@@ -17,6 +17,8 @@ from .rigid.bodies import Bodies, Body
 from .rigid.collide import generate as generate_body_contacts
 from .rigid.contacts import BodyContacts
 from .rigid.forces import BodyForceGenerator
+from .rigid.joint_set import Joints
+from .rigid.joints import Joint
 from .rigid.particle_body import add_particle_contacts
 from .rigid.step import integrate_positions, integrate_velocities
 from .solver import ImpulseHistory, Solver, SolveStats
@@ -191,6 +193,9 @@ class World:
         self.forces: list[ForceGenerator] = []
         #: Rigid-body force generators (``pointmass.rigid.forces``), applied before the kick.
         self.body_forces: list[BodyForceGenerator] = []
+        #: Joints between rigid bodies (``pointmass.rigid.joints``, ``add``); jointed bodies
+        #: do not collide with each other.
+        self.joints = Joints()
         self.contact_generators: list[ContactGenerator] = []
         self.contacts = ContactBuffer()
         self.solver = Solver()
@@ -315,13 +320,14 @@ class World:
         return Body(self.bodies, index)
 
     def add(self, generator):
-        """Add a force generator, a rigid-body force generator (``pointmass.rigid.forces``)
-        or a contact generator; returns it (to keep as a handle).
+        """Add a force generator, a rigid-body force generator (``pointmass.rigid.forces``),
+        a joint (``pointmass.rigid.joints``) or a contact generator; returns it (to keep as a
+        handle). A joint's angles are measured from the pose its bodies have now.
 
         Particle and body indices are checked here, against those that exist now.
         """
         if any(generator is g for g in (*self.forces, *self.contact_generators,
-                                        *self.body_forces)):
+                                        *self.body_forces, *self.joints)):
             raise ValueError(f"{type(generator).__name__} is already in this world: adding it "
                              "again would apply it twice (add another instance for more)")
         if isinstance(generator, ForceGenerator):
@@ -335,8 +341,12 @@ class World:
             self.body_forces.append(generator)
             self._checked_bodies = max(self._checked_bodies, self.bodies.count)
             return generator
+        elif isinstance(generator, Joint):
+            self.joints.add(generator, self.bodies)
+            self._checked_bodies = max(self._checked_bodies, self.bodies.count)
+            return generator
         else:
-            raise TypeError(f"world.add takes a ForceGenerator, BodyForceGenerator or "
+            raise TypeError(f"world.add takes a ForceGenerator, BodyForceGenerator, Joint or "
                             f"ContactGenerator, got "
                             f"{type(generator).__name__}")
         self._checked_count = max(self._checked_count, self.particles.count)
@@ -359,7 +369,7 @@ class World:
         self._checked_count = count
         bodies = self.bodies.count
         if bodies < self._checked_bodies:
-            for generator in self.body_forces:
+            for generator in (*self.body_forces, *self.joints):
                 try:
                     generator.validate(self.bodies)
                 except (IndexError, ValueError) as error:
@@ -377,7 +387,10 @@ class World:
         return probe
 
     def remove(self, generator) -> None:
-        """Remove a generator added with ``add``."""
+        """Remove a generator (or a joint) added with ``add``."""
+        if generator in self.joints:
+            self.joints.remove(generator)
+            return
         for group in (self.forces, self.contact_generators, self.body_forces):
             if generator in group:
                 group.remove(generator)
@@ -399,8 +412,8 @@ class World:
         # the earlier substeps are undone from a copy.
         self._jump_check = needs_jump_check(self.forces)
         saved = (self.particles.snapshot(), self.time, self.impulses.snapshot(),
-                 self.bodies.snapshot(), self.body_impulses.snapshot()) \
-            if self._substeps > 1 else None
+                 self.bodies.snapshot(), self.body_impulses.snapshot(),
+                 self.joints.snapshot()) if self._substeps > 1 else None
         iterations = velocity_passes = position_passes = 0
         self._particles_touched = False
         try:
@@ -416,6 +429,7 @@ class World:
                 self.impulses.restore(saved[2])
                 self.bodies.restore(saved[3])
                 self.body_impulses.restore(saved[4])
+                self.joints.restore(saved[5])
             raise
         self.time += float(dt)
         self.bodies.clear_accumulators()  # user forces and torques last one step
@@ -513,16 +527,18 @@ class World:
         if kept is not None:
             b.force[:], b.torque[:] = kept
         planes = [g for g in self.contact_generators if isinstance(g, Plane)]
-        generate_body_contacts(b, planes, dt, self.body_contacts)
+        generate_body_contacts(b, planes, dt, self.body_contacts,
+                               exclude=self.joints.pair_keys(b.count) if self.joints else None)
         packed = add_particle_contacts(b, p, dt, self.body_contacts, self._particle_friction,
                                        self._particle_restitution)
         if packed is None:
-            rows = self.solver.solve_bodies(b, self.body_contacts, acc, self.body_impulses, dt)
+            rows = self.solver.solve_bodies(b, self.body_contacts, acc, self.body_impulses, dt,
+                                            self.joints)
         else:
             self._particles_touched = True
             acc = np.concatenate([acc, p.acceleration[packed.selected]])
             rows = self.solver.solve_bodies(packed, self.body_contacts, acc,
-                                            self.body_impulses, dt)
+                                            self.body_impulses, dt, self.joints)
             packed.take_velocities(b, p, dt)
         bad = integrate_positions(b.position, b.orientation, b.velocity, b.angular_velocity,
                                   b.inv_inertia, b.inv_inertia_world, dt)
@@ -531,10 +547,10 @@ class World:
                 f"body {bad} became non-finite at t = {self.time:.6g} s (position "
                 f"{b.position[bad].tolist()}, velocity {b.velocity[bad].tolist()})")
         if packed is None:
-            self.solver.project_bodies(b, rows, self.body_impulses)
+            self.solver.project_bodies(b, rows, self.body_impulses, self.joints)
         else:
             packed.give_positions(b, p)
-            self.solver.project_bodies(packed, rows, self.body_impulses)
+            self.solver.project_bodies(packed, rows, self.body_impulses, self.joints)
             packed.take_positions(b, p)
         self._body_rows = rows
         return rows

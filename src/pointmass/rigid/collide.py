@@ -132,15 +132,19 @@ def plane_contacts(pos, quat, shape, size, inv_mass, friction, restitution, reac
 
 
 def generate(bodies, planes, dt: float, contacts: BodyContacts,
-             margin: float = SPECULATIVE_MARGIN) -> None:
+             margin: float = SPECULATIVE_MARGIN, exclude: np.ndarray | None = None) -> None:
     """Fill ``contacts`` with every body–body and body–plane point of ``bodies`` (a
     ``Bodies``) for a step of ``dt`` [s]; ``planes`` is a sequence of ``pointmass.Plane``
-    (its normal, offset, friction, restitution; the particle selection does not apply)."""
+    (its normal, offset, friction, restitution; the particle selection does not apply).
+    ``exclude``: sorted keys lo·N + hi of body pairs that never collide (jointed bodies)."""
     b = bodies
     if b.count > BODY_KEY_LIMIT:
         raise ValueError(f"at most {BODY_KEY_LIMIT} bodies collide (contact keys have 20 bits "
                          f"for a body), got {b.count}")
     first, second, reach = find_pairs(b, margin, dt)
+    if exclude is not None and exclude.shape[0] and first.shape[0]:
+        keep = ~np.isin(first * b.count + second, exclude)
+        first, second = first[keep], second[keep]
     n_planes = len(planes)
     contacts.resize(MAX_POINTS * (first.shape[0] + b.count * n_planes))
     c = contacts
