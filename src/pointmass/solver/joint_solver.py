@@ -9,10 +9,11 @@ import numpy as np
 
 from . import joint_stages as js
 
-#: A position pass that leaves every joint within these is the last one: separation [m], and
-#: angular error beyond ``joint_stages.ANGULAR_SLOP`` [rad].
-LINEAR_TOLERANCE = 1e-5
-ANGULAR_TOLERANCE = 1e-4
+#: Fraction of a joint's position error C removed per step by the velocity rows' target
+#: Ċ = −β·C/dt (``joint_stages``). Measured (a jointed pair tumbling 10 s at 2 rad/s, no
+#: gravity, dt 1/60): |ΔL|/|L| 2.4 % at β 0.1, 0.68 % at 0.2, 0.13 % at 0.5, 0.06 % at 0.8;
+#: the pendulum's period and energy band do not change with β.
+BETA = 0.5
 
 
 @dataclass
@@ -23,6 +24,7 @@ class JointRows:
     ra: np.ndarray
     rb: np.ndarray
     kmat: np.ndarray
+    bias: np.ndarray
     axis: np.ndarray
     mass: np.ndarray
     target: np.ndarray
@@ -34,12 +36,13 @@ def prepare(bodies, joints, dt: float) -> JointRows:
     """The rows of ``joints`` (a ``rigid.joint_set.Joints``) in the bodies' current pose."""
     j = joints.arrays()
     n = j.a.shape[0]
-    rows = JointRows(np.empty((n, 3)), np.empty((n, 3)), np.empty((n, 3, 3)),
+    rows = JointRows(np.empty((n, 3)), np.empty((n, 3)), np.empty((n, 3, 3)), np.empty((n, 3)),
                      np.empty((n, 3, 3)), np.empty((n, 3)), np.empty((n, 3)),
                      np.empty((n, 3), np.int64), np.zeros((n, 3)))
     b = bodies
     js.prepare(j.a, j.b, j.local_a, j.frame_a, j.frame_b, j.kind, j.limits, j.local_b,
-               b.inv_mass, b.inv_inertia_world, b.orientation, dt, rows.ra, rows.rb, rows.kmat,
+               b.inv_mass, b.inv_inertia_world, b.position, b.orientation, dt,
+               BETA, rows.ra, rows.rb, rows.kmat, rows.bias,
                rows.axis, rows.mass, rows.target, rows.row)
     return rows
 
@@ -56,7 +59,8 @@ def velocity_pass(bodies, joints, rows: JointRows) -> float:
     """One Gauss–Seidel pass; returns the largest velocity change [m/s or rad/s]."""
     j = joints.arrays()
     b = bodies
-    return float(js.solve_pass(j.a, j.b, rows.ra, rows.rb, rows.kmat, rows.axis, rows.mass,
+    return float(js.solve_pass(j.a, j.b, rows.ra, rows.rb, rows.kmat, rows.bias, rows.axis,
+                               rows.mass,
                                rows.target, rows.row, b.inv_mass, b.inv_inertia_world,
                                b.velocity, b.angular_velocity, joints.point, rows.lam))
 
@@ -66,12 +70,3 @@ def keep(joints, rows: JointRows) -> None:
     accumulate in ``joints.point``)."""
     js.keep(rows.axis, rows.row, rows.lam, joints.turn)
 
-
-def position_pass(bodies, joints) -> bool:
-    """One projection pass; True when every joint was already within the tolerances."""
-    j = joints.arrays()
-    b = bodies
-    linear, angular = js.project_pass(j.a, j.b, j.local_a, j.local_b, j.frame_a, j.frame_b,
-                                      j.kind, j.limits, b.inv_mass, b.inv_inertia_world,
-                                      b.position, b.orientation)
-    return linear <= LINEAR_TOLERANCE and angular <= ANGULAR_TOLERANCE
