@@ -103,7 +103,7 @@ class Joints:
                 local_b=np.array([j.local_b for j in items], np.float64).reshape(-1, 3),
                 frame_a=np.array([j.frame_a for j in items], np.float64).reshape(-1, 4),
                 frame_b=np.array([j.frame_b for j in items], np.float64).reshape(-1, 4),
-                kind=np.array([j.kind for j in items], np.int64),
+                kind=np.array([j.variant for j in items], np.int64),
                 limits=np.array([j.limits() for j in items], np.float64).reshape(-1, 3))
         return self._packed
 

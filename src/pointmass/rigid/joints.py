@@ -61,7 +61,10 @@ class Joint:
         axis: Unit axis in body A's coordinates for the angular rows (twist / hinge axis).
     """
 
-    kind = BALL
+    #: Which rows the kernels build: ``BALL``, ``CONE`` or ``HINGE``.
+    variant = BALL
+    #: What the renderer draws it as (a link kind, ``render.gather``).
+    kind = "joint"
 
     def __init__(self, body_a, local_a, body_b=None, local_b=None, *, axis=(0.0, 1.0, 0.0)):
         self.a = _body_index(body_a, "body_a")
@@ -112,8 +115,6 @@ class Joint:
         self.frame_b = quat_from_basis(rot_b.T @ world)
 
     # -- drawing ---------------------------------------------------------------------------------
-    kind_name = "joint"
-
     def anchors(self) -> tuple[np.ndarray, np.ndarray]:
         """World positions of the joint point on A and on B [m], each (3,) (equal when held)."""
         b = self._bodies
@@ -149,8 +150,8 @@ class BallJoint(Joint):
     Args (besides ``Joint``'s):
         cone: Largest swing [rad] in [0, π]: the angle between the joint axis as fixed in A
             and as fixed in B (they coincide in the pose the joint was added in). None: free.
-        twist: (low, high) [rad], −π < low ≤ 0 ≤ high < π: the range of rotation about the
-            axis. None: free.
+        twist: (low, high) [rad], −π < low ≤ 0 ≤ high < π: the range of A's rotation about
+            the axis relative to B (right-handed about the axis). None: free.
     """
 
     def __init__(self, body_a, local_a, body_b=None, local_b=None, *, axis=(0.0, 1.0, 0.0),
@@ -158,7 +159,7 @@ class BallJoint(Joint):
         super().__init__(body_a, local_a, body_b, local_b, axis=axis)
         self.cone = None if cone is None else _angle(cone, "cone", 0.0, math.pi)
         self.twist = None if twist is None else _range(twist, "twist")
-        self.kind = BALL if cone is None and twist is None else CONE
+        self.variant = BALL if cone is None and twist is None else CONE
 
     def limits(self) -> tuple[float, float, float]:
         cone = math.pi if self.cone is None else self.cone
@@ -168,10 +169,10 @@ class BallJoint(Joint):
 
 class HingeJoint(Joint):
     """A hinge: a ball joint that also keeps the two bodies' copies of ``axis`` together, so
-    they turn about it only; ``limits`` (low, high) [rad] bounds the angle about it (a knee:
-    (0, 2.5) bends one way). None: free."""
+    they turn about it only; ``limits`` (low, high) [rad] bounds the angle A has turned about
+    it relative to B, right-handed (a knee: (0, 2.5) bends one way). None: free."""
 
-    kind = HINGE
+    variant = HINGE
 
     def __init__(self, body_a, local_a, body_b=None, local_b=None, *, axis=(1.0, 0.0, 0.0),
                  limits=None) -> None:

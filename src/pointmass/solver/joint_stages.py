@@ -57,9 +57,9 @@ def _frames(quat, a, b, fa, fb, j):
 
 @njit(cache=True, nogil=True)
 def _twist(qa, qb):
-    """Angle [rad] about the x axis of B's frame relative to A's (swing–twist decomposition of
-    qa⁻¹·qb: the twist part is (w, x, 0, 0) normalised)."""
-    w, x, _, _ = qmul(qa[0], -qa[1], -qa[2], -qa[3], qb[0], qb[1], qb[2], qb[3])
+    """Angle [rad] A has turned about the joint axis relative to B (swing–twist decomposition
+    of qb⁻¹·qa: its twist part is (w, x, 0, 0) normalised). Its rate is (ωA − ωB)·axis."""
+    w, x, _, _ = qmul(qb[0], -qb[1], -qb[2], -qb[3], qa[0], qa[1], qa[2], qa[3])
     if w < 0.0:
         w, x = -w, -x
     return 2.0 * math.atan2(x, w)
@@ -67,7 +67,7 @@ def _twist(qa, qb):
 
 @njit(cache=True, nogil=True)
 def _limit_row(out, s, angle, low, high, ux, uy, uz):
-    """Slot s: the nearer bound of [low, high] on ``angle``, along axis ±u."""
+    """Slot s: the nearer bound of [low, high] on ``angle``, whose rate is u·(ωB − ωA)."""
     if low == -math.inf and high == math.inf:
         out[s, 4] = OFF
         return
@@ -98,7 +98,7 @@ def angular_rows(quat, a, b, fa, fb, kind, lim, j, out):
             out[s, 2] = bx * cy - by * cx
             out[s, 3] = bx * cx + by * cy + bz * cz
             out[s, 4] = EQUAL
-        _limit_row(out, 2, _twist(qa, qb), lim[j, 1], lim[j, 2], ax, ay, az)
+        _limit_row(out, 2, _twist(qa, qb), lim[j, 1], lim[j, 2], -ax, -ay, -az)
         return
     # cone: swing = angle between the axes, dswing/dt = (ωB − ωA)·(a × b)/|a × b|
     nx, ny, nz = ay * bz - az * by, az * bx - ax * bz, ax * by - ay * bx
@@ -112,8 +112,8 @@ def angular_rows(quat, a, b, fa, fb, kind, lim, j, out):
     mx, my, mz = ax + bx, ay + by, az + bz
     size = math.sqrt(mx * mx + my * my + mz * mz)
     if size > 1e-9:
-        _limit_row(out, 1, _twist(qa, qb), lim[j, 1], lim[j, 2], mx / size, my / size,
-                   mz / size)
+        _limit_row(out, 1, _twist(qa, qb), lim[j, 1], lim[j, 2], -mx / size, -my / size,
+                   -mz / size)
 
 
 @njit(cache=True, nogil=True)
