@@ -7,6 +7,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ..solver.joint_stages import angular_errors
 from .bodies import Bodies
 from .joints import Joint
 
@@ -106,6 +107,19 @@ class Joints:
                 kind=np.array([j.variant for j in items], np.int64),
                 limits=np.array([j.limits() for j in items], np.float64).reshape(-1, 3))
         return self._packed
+
+    def angular_errors(self, bodies: Bodies) -> np.ndarray:
+        """Per joint, how far [rad] it is beyond a cone, twist or hinge limit, or off its hinge
+        axis, now; shape (J,), 0 where every angular row is met."""
+        j = self.arrays()
+        out = np.zeros(j.a.shape[0])
+        angular_errors(j.a, j.b, j.frame_a, j.frame_b, j.kind, j.limits, bodies.orientation,
+                       out)
+        return out
+
+    def separations(self) -> np.ndarray:
+        """Per joint, the distance between its two joint points now [m], shape (J,)."""
+        return np.array([j.separation() for j in self.items])
 
     def pair_keys(self, count: int) -> np.ndarray:
         """Sorted keys min·count + max of the body pairs a joint joins (they do not collide)."""

@@ -125,21 +125,44 @@ def _passes(b, c, rows: BodyRows, passes: int) -> int:
         b.angular_velocity, rows.impulse, rows.jt1, rows.jt2, VELOCITY_TOLERANCE, passes))
 
 
+def _project_with_joints(b, rows: BodyRows, joints) -> None:
+    """Projection passes that visit the contacts, then the joints (``joint_project``: only
+    what exceeds its slop), until both are within tolerance."""
+    c = rows.contacts
+    for n in range(1, MAX_POSITION_PASSES + 1):
+        done = True
+        if c.count:
+            _, deepest = st.project_positions(c.a, c.b, c.normal, rows.anchor_a,
+                                              rows.anchor_b, c.depth, b.inv_mass,
+                                              b.inv_inertia_world, b.position, b.orientation, 1)
+            rows.deepest = float(deepest)
+            done = deepest <= 1.5 * st.SLOP
+        done = joint_solver.position_pass(b, joints) and done
+        rows.position_passes = n
+        if done:
+            return
+
+
 def project_positions(bodies, rows: BodyRows, history: ImpulseHistory, joints=None) -> None:
-    """After the drift: remove penetration beyond the slop, refresh I⁻¹_world, keep the
-    impulses (the joints' too: their drift is removed in the velocity rows, ``joint_stages``)
-    for the next step."""
+    """After the drift: remove penetration beyond the slop (and what opened joints beyond
+    theirs), refresh I⁻¹_world, keep the impulses for the next step."""
+    c = rows.contacts
+    b = bodies
     if rows.joints is not None:
         joint_solver.keep(joints, rows.joints)
-    c = rows.contacts
+        _project_with_joints(b, rows, joints)
+        if c.count == 0:
+            st.world_inertia(b.orientation, b.inv_inertia, b.inv_inertia_world)
+            return
     if c.count == 0:
         return
-    b = bodies
-    passes, deepest = st.project_positions(c.a, c.b, c.normal, rows.anchor_a, rows.anchor_b,
-                                           c.depth, b.inv_mass, b.inv_inertia_world,
-                                           b.position, b.orientation, MAX_POSITION_PASSES)
-    rows.position_passes = int(passes)
-    rows.deepest = float(deepest)
+    if rows.joints is None:
+        passes, deepest = st.project_positions(c.a, c.b, c.normal, rows.anchor_a,
+                                               rows.anchor_b, c.depth, b.inv_mass,
+                                               b.inv_inertia_world, b.position, b.orientation,
+                                               MAX_POSITION_PASSES)
+        rows.position_passes = int(passes)
+        rows.deepest = float(deepest)
     st.world_inertia(b.orientation, b.inv_inertia, b.inv_inertia_world)
     friction = rows.jt1[:, None] * rows.t1 + rows.jt2[:, None] * rows.t2
     history.keep(c.key, rows.impulse, friction)

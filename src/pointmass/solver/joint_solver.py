@@ -7,6 +7,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from . import joint_project
 from . import joint_stages as js
 
 #: Fraction of a joint's position error C removed per step by the velocity rows' target
@@ -70,3 +71,14 @@ def keep(joints, rows: JointRows) -> None:
     accumulate in ``joints.point``)."""
     js.keep(rows.axis, rows.row, rows.lam, joints.turn)
 
+
+
+def position_pass(bodies, joints) -> bool:
+    """One projection pass (``joint_project``); True when every joint was already within the
+    slops (so the passes may stop)."""
+    j = joints.arrays()
+    b = bodies
+    linear, angular = joint_project.project_pass(
+        j.a, j.b, j.local_a, j.local_b, j.frame_a, j.frame_b, j.kind, j.limits, b.inv_mass,
+        b.inv_inertia_world, b.position, b.orientation)
+    return linear == 0.0 and angular == 0.0
