@@ -93,8 +93,8 @@ def build(p: Params) -> Scene:
                                  restitution=0.1)
             for name, (centre, half) in BONES.items()}
     made = [world.add(j) for j in joints(bone)]
-    scene = Scene(world, camera=CameraHint(target=(0.8, 0.4, 0.6), distance=4.8, yaw=40.0,
-                                           pitch=28.0),
+    scene = Scene(world, camera=CameraHint(target=(0.7, 0.9, 0.5), distance=6.0, yaw=40.0,
+                                           pitch=22.0),
                   dt=1.0 / 60.0,
                   handles={"bones": bone, "joints": made, "worst_gap": 0.0, "lowest": 0.0,
                            "worst_angle": 0.0, "rng": np.random.default_rng(p.seed),
