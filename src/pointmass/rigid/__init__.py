@@ -8,5 +8,7 @@ broadphase: sort and sweep on AABBs; contacts: ``BodyContacts``, the solver's ro
 pairs and planes through the narrow phase. The solver's body stage is in
 ``pointmass.solver.body_stages`` / ``body_solver`` / ``body_direct``. forces: body force
 generators (springs on both ends, aero on the point velocity, buoyancy, explosion, user
-callables) for ``World.add``.
+callables) for ``World.add``. joints: ``BallJoint`` (cone and twist limits) and ``HingeJoint``
+(angle limits) for ``World.add``; joint_set: the world's ``Joints`` and their warm start (the
+kernels: ``pointmass.solver.joint_stages`` / ``joint_project`` / ``joint_solver``).
 """
