@@ -132,12 +132,14 @@ def plane_contacts(pos, quat, shape, size, inv_mass, friction, restitution, reac
 
 
 def generate(bodies, planes, dt: float, contacts: BodyContacts,
-             margin: float = SPECULATIVE_MARGIN, active: np.ndarray | None = None) -> None:
+             margin: float = SPECULATIVE_MARGIN, active: np.ndarray | None = None,
+             exclude: np.ndarray | None = None) -> None:
     """Fill ``contacts`` with every body–body and body–plane point of ``bodies`` (a
     ``Bodies``) for a step of ``dt`` [s]; ``planes`` is a sequence of ``pointmass.Plane``
     (its normal, offset, friction, restitution; the particle selection does not apply).
     With ``active`` (N,) bool (sleeping, ``islands.py``), only pairs with an active body and
-    active bodies on planes are narrow-phased: sleeping and static bodies are left alone."""
+    active bodies on planes are narrow-phased: sleeping and static bodies are left alone.
+    ``exclude``: sorted keys lo·N + hi of body pairs that never collide (jointed bodies)."""
     b = bodies
     if b.count > BODY_KEY_LIMIT:
         raise ValueError(f"at most {BODY_KEY_LIMIT} bodies collide (contact keys have 20 bits "
@@ -148,6 +150,9 @@ def generate(bodies, planes, dt: float, contacts: BodyContacts,
         live = active[first] | active[second]
         first, second = first[live], second[live]
         on_planes = np.where(active, b.inv_mass, 0.0)  # the plane kernel skips w = 0
+    if exclude is not None and exclude.shape[0] and first.shape[0]:
+        keep = ~np.isin(first * b.count + second, exclude)
+        first, second = first[keep], second[keep]
     n_planes = len(planes)
     contacts.resize(MAX_POINTS * (first.shape[0] + b.count * n_planes))
     c = contacts

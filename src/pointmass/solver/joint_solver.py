@@ -1,0 +1,84 @@
+"""The joints' part of the body stage (``body_solver``): prepare and warm start, one velocity
+pass, one position pass, and keeping the impulses; the kernels are in ``joint_stages``."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from . import joint_project
+from . import joint_stages as js
+
+#: Fraction of a joint's position error C removed per step by the velocity rows' target
+#: Ċ = −β·C/dt (``joint_stages``). Measured (a jointed pair tumbling 10 s at 2 rad/s, no
+#: gravity, dt 1/60): |ΔL|/|L| 2.4 % at β 0.1, 0.68 % at 0.2, 0.13 % at 0.5, 0.06 % at 0.8;
+#: the pendulum's period and energy band do not change with β.
+BETA = 0.5
+
+
+@dataclass
+class JointRows:
+    """One substep's rows of the joints (J joints): arms [m] (J, 3), K (J, 3, 3), per angular
+    slot the axis (J, 3, 3), mass, target [rad/s], type and accumulated impulse (J, 3)."""
+
+    ra: np.ndarray
+    rb: np.ndarray
+    kmat: np.ndarray
+    bias: np.ndarray
+    axis: np.ndarray
+    mass: np.ndarray
+    target: np.ndarray
+    row: np.ndarray
+    lam: np.ndarray
+
+
+def prepare(bodies, joints, dt: float) -> JointRows:
+    """The rows of ``joints`` (a ``rigid.joint_set.Joints``) in the bodies' current pose."""
+    j = joints.arrays()
+    n = j.a.shape[0]
+    rows = JointRows(np.empty((n, 3)), np.empty((n, 3)), np.empty((n, 3, 3)), np.empty((n, 3)),
+                     np.empty((n, 3, 3)), np.empty((n, 3)), np.empty((n, 3)),
+                     np.empty((n, 3), np.int64), np.zeros((n, 3)))
+    b = bodies
+    js.prepare(j.a, j.b, j.local_a, j.frame_a, j.frame_b, j.kind, j.limits, j.local_b,
+               b.inv_mass, b.inv_inertia_world, b.position, b.orientation, dt,
+               BETA, rows.ra, rows.rb, rows.kmat, rows.bias,
+               rows.axis, rows.mass, rows.target, rows.row)
+    return rows
+
+
+def warm_start(bodies, joints, rows: JointRows) -> None:
+    j = joints.arrays()
+    b = bodies
+    js.warm_start(j.a, j.b, rows.ra, rows.rb, rows.axis, rows.row, b.inv_mass,
+                  b.inv_inertia_world, b.velocity, b.angular_velocity, joints.point, joints.turn,
+                  rows.lam)
+
+
+def velocity_pass(bodies, joints, rows: JointRows) -> float:
+    """One Gauss–Seidel pass; returns the largest velocity change [m/s or rad/s]."""
+    j = joints.arrays()
+    b = bodies
+    return float(js.solve_pass(j.a, j.b, rows.ra, rows.rb, rows.kmat, rows.bias, rows.axis,
+                               rows.mass,
+                               rows.target, rows.row, b.inv_mass, b.inv_inertia_world,
+                               b.velocity, b.angular_velocity, joints.point, rows.lam))
+
+
+def keep(joints, rows: JointRows) -> None:
+    """Keep this step's angular impulses for the next warm start (the point block's already
+    accumulate in ``joints.point``)."""
+    js.keep(rows.axis, rows.row, rows.lam, joints.turn)
+
+
+
+def position_pass(bodies, joints) -> bool:
+    """One projection pass (``joint_project``); True when every joint was already within the
+    slops (so the passes may stop)."""
+    j = joints.arrays()
+    b = bodies
+    linear, angular = joint_project.project_pass(
+        j.a, j.b, j.local_a, j.local_b, j.frame_a, j.frame_b, j.kind, j.limits, b.inv_mass,
+        b.inv_inertia_world, b.position, b.orientation)
+    return linear == 0.0 and angular == 0.0
