@@ -132,6 +132,7 @@ class Packed:
         self.position = np.concatenate([b.position, origin])
         self.velocity = np.concatenate([b.velocity, particles.velocity[selected]])
         self.angular_velocity = np.concatenate([b.angular_velocity, np.zeros((k, 3))])
+        self.awake = np.concatenate([b.awake, np.ones(k, bool)])  # joints skip sleeping rows
         #: Sleeping bodies that particles rest on, immovable in this view (``freeze``).
         self.frozen: np.ndarray | None = None
 

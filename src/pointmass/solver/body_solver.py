@@ -139,7 +139,7 @@ def _project_with_joints(b, rows: BodyRows, joints) -> None:
                                               b.inv_inertia_world, b.position, b.orientation, 1)
             rows.deepest = float(deepest)
             done = deepest <= 1.5 * st.SLOP
-        done = joint_solver.position_pass(b, joints) and done
+        done = joint_solver.position_pass(b, joints, rows.joints) and done
         rows.position_passes = n
         if done:
             return

@@ -20,7 +20,7 @@ import numpy as np
 from numba import njit
 
 from ..rigid.scalar import qmul, qnormalize, solve3
-from .joint_stages import EQUAL, OFF, _axis_mass, _point_matrix, angular_rows, separation
+from .joint_stages import EQUAL, OFF, OFF_JOINT, _axis_mass, _point_matrix, angular_rows, separation
 
 #: Separation [m] and angle [rad] left to the velocity rows' bias (Box2D's linear slop 5 mm;
 #: its angular slop is 2°, half that here so limits hold within a degree or two).
@@ -81,14 +81,17 @@ def _angle_beyond(c, row):
 
 
 @njit(cache=True, nogil=True)
-def project_pass(ja, jb, la, lb, fa, fb, kind, lim, inv_mass, inv_i, pos, quat):
-    """One pass over the joints: each one's angular rows, then its separation, brought back
-    to the slops. Returns the largest excess met [m] and [rad]."""
+def project_pass(ja, jb, la, lb, fa, fb, kind, lim, inv_mass, inv_i, pos, quat, mode):
+    """One pass over the joints (not those whose ``mode`` is OFF: asleep): each one's
+    angular rows, then its separation, brought back to the slops. Returns the largest excess
+    met [m] and [rad]."""
     out = np.empty((3, 5))
     k = np.empty((3, 3))
     worst = 0.0
     worst_angle = 0.0
     for j in range(ja.shape[0]):
+        if mode[j] == OFF_JOINT:
+            continue
         a = ja[j]
         b = jb[j]
         angular_rows(quat, a, b, fa, fb, kind, lim, j, out)

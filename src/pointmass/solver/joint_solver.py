@@ -7,8 +7,10 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from . import joint_direct as jd
 from . import joint_project
 from . import joint_stages as js
+from . import joint_tree as jt
 
 #: Fraction of a joint's position error C removed per step by the velocity rows' target
 #: Ċ = −β·C/dt (``joint_stages``). Measured (a jointed pair tumbling 10 s at 2 rad/s, no
@@ -31,6 +33,10 @@ class JointRows:
     target: np.ndarray
     row: np.ndarray
     lam: np.ndarray
+    #: Per joint ``joint_tree.OFF``, ``ITERATIVE`` or ``DIRECT`` (J,), and the DIRECT forest:
+    #: its nodes in postorder, each one's parent position, the count, and the factors.
+    mode: np.ndarray
+    tree: tuple
 
 
 def prepare(bodies, joints, dt: float) -> JointRows:
@@ -39,13 +45,35 @@ def prepare(bodies, joints, dt: float) -> JointRows:
     n = j.a.shape[0]
     rows = JointRows(np.empty((n, 3)), np.empty((n, 3)), np.empty((n, 3, 3)), np.empty((n, 3)),
                      np.empty((n, 3, 3)), np.empty((n, 3)), np.empty((n, 3)),
-                     np.empty((n, 3), np.int64), np.zeros((n, 3)))
+                     np.empty((n, 3), np.int64), np.zeros((n, 3)), np.empty(n, np.int64), ())
     b = bodies
+    awake = getattr(b, "awake", None)
+    movable = b.inv_mass > 0.0
+    jt.choose(j.a, j.b, movable if awake is None else awake, movable, rows.mode)
     js.prepare(j.a, j.b, j.local_a, j.frame_a, j.frame_b, j.kind, j.limits, j.local_b,
                b.inv_mass, b.inv_inertia_world, b.position, b.orientation, dt,
                BETA, rows.ra, rows.rb, rows.kmat, rows.bias,
                rows.axis, rows.mass, rows.target, rows.row)
+    rows.tree = _factor(b, j, rows, movable)
     return rows
+
+
+def _factor(b, j, rows: JointRows, movable: np.ndarray) -> tuple:
+    """Order and factor the DIRECT forest (``joint_direct``); a singular pivot (a body without
+    full inertia, repeated joints) sends its joints back to the Gauss–Seidel rows."""
+    if not (rows.mode == jt.DIRECT).any():
+        return ()
+    size = b.inv_mass.shape[0] + j.a.shape[0]
+    nodes = np.empty(size, np.int64)
+    parent = np.empty(size, np.int64)
+    count = jt.order(j.a, j.b, movable, rows.mode, nodes, parent)
+    dinv = np.zeros((count, 6, 6))
+    low = np.zeros((count, 6, 6))
+    if not jd.factor(nodes, parent, count, b.inv_mass.shape[0], j.a, rows.ra, rows.rb,
+                     b.inv_mass, b.inv_inertia_world, dinv, low):
+        rows.mode[rows.mode == jt.DIRECT] = jt.ITERATIVE
+        return ()
+    return nodes, parent, count, dinv, low
 
 
 def warm_start(bodies, joints, rows: JointRows) -> None:
@@ -53,32 +81,37 @@ def warm_start(bodies, joints, rows: JointRows) -> None:
     b = bodies
     js.warm_start(j.a, j.b, rows.ra, rows.rb, rows.axis, rows.row, b.inv_mass,
                   b.inv_inertia_world, b.velocity, b.angular_velocity, joints.point, joints.turn,
-                  rows.lam)
+                  rows.lam, rows.mode)
 
 
 def velocity_pass(bodies, joints, rows: JointRows) -> float:
     """One Gauss–Seidel pass; returns the largest velocity change [m/s or rad/s]."""
     j = joints.arrays()
     b = bodies
-    return float(js.solve_pass(j.a, j.b, rows.ra, rows.rb, rows.kmat, rows.bias, rows.axis,
-                               rows.mass,
-                               rows.target, rows.row, b.inv_mass, b.inv_inertia_world,
-                               b.velocity, b.angular_velocity, joints.point, rows.lam))
+    change = float(js.solve_pass(j.a, j.b, rows.ra, rows.rb, rows.kmat, rows.bias, rows.axis,
+                                 rows.mass, rows.target, rows.row, b.inv_mass,
+                                 b.inv_inertia_world, b.velocity, b.angular_velocity,
+                                 joints.point, rows.lam, rows.mode))
+    if rows.tree:
+        nodes, parent, count, dinv, low = rows.tree
+        change = max(change, float(jd.solve(nodes, parent, count, b.inv_mass.shape[0], j.a,
+                                            j.b, rows.ra, rows.rb, rows.bias, dinv, low,
+                                            b.velocity, b.angular_velocity, joints.point)))
+    return change
 
 
 def keep(joints, rows: JointRows) -> None:
     """Keep this step's angular impulses for the next warm start (the point block's already
     accumulate in ``joints.point``)."""
-    js.keep(rows.axis, rows.row, rows.lam, joints.turn)
+    js.keep(rows.axis, rows.row, rows.lam, joints.turn, rows.mode)
 
 
-
-def position_pass(bodies, joints) -> bool:
+def position_pass(bodies, joints, rows: JointRows) -> bool:
     """One projection pass (``joint_project``); True when every joint was already within the
     slops (so the passes may stop)."""
     j = joints.arrays()
     b = bodies
     linear, angular = joint_project.project_pass(
         j.a, j.b, j.local_a, j.local_b, j.frame_a, j.frame_b, j.kind, j.limits, b.inv_mass,
-        b.inv_inertia_world, b.position, b.orientation)
+        b.inv_inertia_world, b.position, b.orientation, rows.mode)
     return linear == 0.0 and angular == 0.0

@@ -32,6 +32,8 @@ import numpy as np
 from numba import njit
 
 from ..rigid.scalar import qmul, qrot, solve3
+from .joint_tree import DIRECT as DIRECT_JOINT
+from .joint_tree import OFF as OFF_JOINT
 
 #: Row types of an angular slot.
 OFF = 0
@@ -236,18 +238,21 @@ def prepare(ja, jb, la, fa, fb, kind, lim, lb, inv_mass, inv_i, pos, quat, dt, b
 
 
 @njit(cache=True, nogil=True)
-def warm_start(ja, jb, ra, rb, axis, row, inv_mass, inv_i, vel, ang, point, turn, lam):
+def warm_start(ja, jb, ra, rb, axis, row, inv_mass, inv_i, vel, ang, point, turn, lam, mode):
     """Apply last step's impulses: ``point`` (J, 3) [N·s] as it was, and each slot's angular
     impulse ``turn`` (J, 3, 3) [N·m·s], a world vector, seen along this step's axis (a limit's
-    only if it pushes); ``lam`` (J, 3) gets those scalars."""
+    only if it pushes); ``lam`` (J, 3) gets those scalars. Joints whose ``mode`` is
+    ``joint_tree.OFF`` (asleep) are left out."""
     for j in range(ja.shape[0]):
+        lam[j, 0] = lam[j, 1] = lam[j, 2] = 0.0
+        if mode[j] == OFF_JOINT:
+            continue
         a = ja[j]
         b = jb[j]
         px, py, pz = point[j, 0], point[j, 1], point[j, 2]
         _push(vel, ang, inv_mass, inv_i, b, 1.0, rb[j, 0], rb[j, 1], rb[j, 2], px, py, pz)
         _push(vel, ang, inv_mass, inv_i, a, -1.0, ra[j, 0], ra[j, 1], ra[j, 2], px, py, pz)
         for s in range(3):
-            lam[j, s] = 0.0
             if row[j, s] == OFF:
                 continue
             ux, uy, uz = axis[j, s, 0], axis[j, s, 1], axis[j, s, 2]
@@ -261,12 +266,15 @@ def warm_start(ja, jb, ra, rb, axis, row, inv_mass, inv_i, vel, ang, point, turn
 
 @njit(cache=True, nogil=True)
 def solve_pass(ja, jb, ra, rb, kmat, bias, axis, mass, target, row, inv_mass, inv_i, vel, ang,
-               point, lam):
+               point, lam, mode):
     """One Gauss–Seidel pass over the joints: angular rows, then the point block (the point
-    last, so it is the row most exactly met when the passes stop). Returns the largest change
-    of a row's velocity in the pass [m/s or rad/s]."""
+    last, so it is the row most exactly met when the passes stop; not for a ``mode`` DIRECT
+    joint, whose point the tree solve takes). Returns the largest change of a row's velocity
+    in the pass [m/s or rad/s]."""
     largest = 0.0
     for j in range(ja.shape[0]):
+        if mode[j] == OFF_JOINT:
+            continue
         a = ja[j]
         b = jb[j]
         for s in range(3):
@@ -287,6 +295,8 @@ def solve_pass(ja, jb, ra, rb, kmat, bias, axis, mass, target, row, inv_mass, in
                 largest = change
             _spin(ang, inv_i, b, 1.0, d * ux, d * uy, d * uz)
             _spin(ang, inv_i, a, -1.0, d * ux, d * uy, d * uz)
+        if mode[j] == DIRECT_JOINT:
+            continue
         rax, ray, raz = ra[j, 0], ra[j, 1], ra[j, 2]
         rbx, rby, rbz = rb[j, 0], rb[j, 1], rb[j, 2]
         cx = -(vel[a, 0] + ang[a, 1] * raz - ang[a, 2] * ray)
@@ -314,9 +324,12 @@ def solve_pass(ja, jb, ra, rb, kmat, bias, axis, mass, target, row, inv_mass, in
 
 
 @njit(cache=True, nogil=True)
-def keep(axis, row, lam, turn):
-    """Each slot's impulse as a world vector (J, 3, 3), for next step's warm start."""
+def keep(axis, row, lam, turn, mode):
+    """Each slot's impulse as a world vector (J, 3, 3), for next step's warm start (a
+    sleeping joint keeps what it had)."""
     for j in range(axis.shape[0]):
+        if mode[j] == OFF_JOINT:
+            continue
         for s in range(3):
             x = lam[j, s] if row[j, s] != OFF else 0.0
             for k in range(3):
