@@ -45,6 +45,7 @@ class BodyRows:
     position_passes: int = 0
     deepest: float = 0.0
     joints: joint_solver.JointRows | None = None
+    relax_passes: int = 0
 
 
 def solve_velocities(bodies, contacts: BodyContacts, acceleration: np.ndarray,
@@ -98,6 +99,7 @@ def solve_velocities(bodies, contacts: BodyContacts, acceleration: np.ndarray,
 #: Contacts first converges sooner: the ragdoll demo, seeds 1–6, 4 s each, averaged 24.6
 #: velocity passes a step against 29.1 joints first (the cap is 30), same worst joint gaps.
 JOINTS_FIRST = False
+RELAX = 0
 
 
 def _interleaved(b, c, rows: BodyRows, joints, max_passes: int) -> int:
@@ -151,6 +153,9 @@ def project_positions(bodies, rows: BodyRows, history: ImpulseHistory, joints=No
     c = rows.contacts
     b = bodies
     if rows.joints is not None:
+        if RELAX:
+            joint_solver.unbias(rows.joints)
+            rows.relax_passes = _interleaved(b, c, rows, joints, RELAX)
         joint_solver.keep(joints, rows.joints)
         _project_with_joints(b, rows, joints)
         if c.count == 0:

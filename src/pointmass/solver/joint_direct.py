@@ -86,10 +86,54 @@ def _edge(nodes, n, ja, ra, rb, child, parent_node, out):
 
 
 @njit(cache=True, nogil=True)
-def factor(nodes, parent, count, n, ja, ra, rb, inv_mass, inv_i, dinv, low):
+def geometric(ja, jb, mode, ra, rb, point, inv_inertia, dt, extra):
+    """The inertia [kg·m²] each body's angular block gains from its joints' tension, into
+    ``extra`` (N, 3, 3) (module docstring, "Geometric stiffness"): per joint end pulled
+    outward along its arm r by the impulse t = p·r̂ > 0 [N·s] (last step's, ``point``),
+    dt·t·|r|·(1 − r̂r̂ᵀ), scaled by max(0, 1 − 1/ρ) where ρ = dt·Σt·|r| / I_min, so that a
+    body whose alignment mode has ω·dt ≤ 1 gains nothing and a faster one is held at 1."""
+    extra[:] = 0.0
+    load = np.zeros(extra.shape[0])
+    for j in range(ja.shape[0]):
+        if mode[j] != 2:
+            continue
+        for side in range(2):
+            i = ja[j] if side == 0 else jb[j]
+            if i < 0:
+                continue
+            sign = -1.0 if side == 0 else 1.0
+            rx, ry, rz = (ra[j, 0], ra[j, 1], ra[j, 2]) if side == 0 else \
+                (rb[j, 0], rb[j, 1], rb[j, 2])
+            size = np.sqrt(rx * rx + ry * ry + rz * rz)
+            if size == 0.0:
+                continue
+            ux, uy, uz = rx / size, ry / size, rz / size
+            pull = sign * (point[j, 0] * ux + point[j, 1] * uy + point[j, 2] * uz)
+            if pull <= 0.0:
+                continue  # compression: its stiffness does not restore
+            g = dt * pull * size
+            load[i] += g
+            u = (ux, uy, uz)
+            for a in range(3):
+                for b in range(3):
+                    extra[i, a, b] += g * ((1.0 if a == b else 0.0) - u[a] * u[b])
+    for i in range(extra.shape[0]):
+        if load[i] == 0.0:
+            continue
+        smallest = 1.0 / max(inv_inertia[i, 0], inv_inertia[i, 1], inv_inertia[i, 2])
+        rho = load[i] / smallest
+        scale = 1.0 - 1.0 / rho if rho > 1.0 else 0.0
+        for a in range(3):
+            for b in range(3):
+                extra[i, a, b] *= scale
+
+
+@njit(cache=True, nogil=True)
+def factor(nodes, parent, count, n, ja, ra, rb, inv_mass, inv_i, extra, dinv, low):
     """Factor H = L·D·Lᵀ over the ``count`` nodes in postorder: ``dinv`` (P, 6, 6) each D⁻¹,
-    ``low`` (P, 6, 6) each node's D⁻¹·H(node, parent). Returns False if a pivot is singular
-    (a body without full inertia, joints that repeat one another)."""
+    ``low`` (P, 6, 6) each node's D⁻¹·H(node, parent); a body's angular block is its world
+    inertia plus ``extra`` (N, 3, 3). Returns False if a pivot is singular (a body without
+    full inertia, joints that repeat one another)."""
     acc = np.zeros((count, 6, 6))
     block = np.empty((6, 6))
     for p in range(count):
@@ -102,7 +146,7 @@ def factor(nodes, parent, count, n, ja, ra, rb, inv_mass, inv_i, dinv, low):
             for u in range(3):
                 acc[p, u, u] += m
                 for v in range(3):
-                    acc[p, 3 + u, 3 + v] += inertia[u, v]
+                    acc[p, 3 + u, 3 + v] += inertia[u, v] + extra[node, u, v]
     for p in range(count):
         size = 6 if nodes[p] < n else 3
         if not _invert(acc[p], size, dinv[p]):

@@ -249,6 +249,8 @@ def warm_start(ja, jb, ra, rb, axis, row, inv_mass, inv_i, vel, ang, point, turn
             continue
         a = ja[j]
         b = jb[j]
+        if mode[j] == DIRECT_JOINT:  # the exact solve finds the whole impulse itself
+            point[j, 0] = point[j, 1] = point[j, 2] = 0.0
         px, py, pz = point[j, 0], point[j, 1], point[j, 2]
         _push(vel, ang, inv_mass, inv_i, b, 1.0, rb[j, 0], rb[j, 1], rb[j, 2], px, py, pz)
         _push(vel, ang, inv_mass, inv_i, a, -1.0, ra[j, 0], ra[j, 1], ra[j, 2], px, py, pz)
