@@ -2,6 +2,7 @@
 point blocks (``solver/joint_direct.py``) against Gauss–Seidel's limits, and the solve itself
 against the saddle-point system it factors."""
 
+import itertools
 import math
 
 import numpy as np
@@ -77,7 +78,7 @@ def test_the_tree_solve_meets_every_joint_target_at_once():
     trunk = [world.add_body(Box(HALF), (0.0, -0.1 - 0.2 * k, 0.0), mass=1.0 + k)
              for k in range(6)]
     world.add(BallJoint(trunk[0], (0.0, 0.1, 0.0)))
-    for upper, lower in zip(trunk, trunk[1:]):
+    for upper, lower in itertools.pairwise(trunk):
         world.add(BallJoint(lower, (0.0, 0.1, 0.0), upper))
     for side in (-1.0, 1.0):
         above = trunk[2]
@@ -108,7 +109,7 @@ def test_a_loop_and_a_second_anchor_go_to_the_iterative_rows():
     world = pm.World(gravity=(0.0, -G, 0.0))
     planks = [world.add_body(Box(HALF), (0.2 * k, 0.0, 0.0), mass=1.0) for k in range(5)]
     world.add(BallJoint(planks[0], (-0.1, 0.0, 0.0)))
-    for left, right in zip(planks, planks[1:]):
+    for left, right in itertools.pairwise(planks):
         world.add(BallJoint(right, (-0.1, 0.0, 0.0), left))
     world.add(BallJoint(planks[-1], (0.1, 0.0, 0.0)))
     ring = [world.add_body(Box(HALF), (0.2 * k, 2.0, 0.0), mass=1.0) for k in range(3)]
