@@ -22,6 +22,11 @@ freely at 2 rad/s lost 18 % of its angular momentum and 8 % of its energy in 10 
 The bias acts through equal and opposite impulses at the joint points, so momentum is kept to
 O(C·P): 0.13 % and 0.08 % with β = 0.5, the pendulum's period (within 4e-5) and energy band
 unchanged. The bias alone lets fast-turning bones open their joints (``joint_project``).
+
+The point blocks of the joints that form a forest (chains, ragdolls, a top on its tip) are not
+swept here but solved exactly, all at once, by ``joint_direct`` (``joint_tree``: which, and
+why a long chain needs it); ``mode`` says which joint goes where, and OFF leaves a sleeping
+joint out of every kernel.
 """
 
 from __future__ import annotations
