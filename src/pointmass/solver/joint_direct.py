@@ -110,7 +110,7 @@ def geometric(ja, jb, mode, ra, rb, point, inv_inertia, dt, extra):
     extra[:] = 0.0
     load = np.zeros(extra.shape[0])
     for j in range(ja.shape[0]):
-        if mode[j] != DIRECT:
+        if mode[j] < DIRECT:  # DIRECT and LOOP joints
             continue
         for side in range(2):
             i = ja[j] if side == 0 else jb[j]
@@ -187,7 +187,7 @@ def factor(nodes, parent, count, n, ja, ra, rb, inv_mass, inv_i, extra, dinv, lo
 
 
 @njit(cache=True, nogil=True)
-def _rate(ja, jb, ra, rb, vel, ang, j):
+def rate(ja, jb, ra, rb, vel, ang, j):
     """Ċ of joint j's point block now [m/s] (module docstring)."""
     a = ja[j]
     b = jb[j]
@@ -204,32 +204,19 @@ def _rate(ja, jb, ra, rb, vel, ang, j):
 
 
 @njit(cache=True, nogil=True)
-def solve(nodes, parent, count, n, ja, jb, ra, rb, bias, dinv, low, vel, ang, point):
-    """One exact solve: the impulses that bring every DIRECT joint's Ċ to its target ``bias``
-    (J, 3) [m/s] given the velocities now, applied to ``vel``, ``ang`` and added to ``point``
-    (J, 3) [N·s]. Returns the largest |target − Ċ| met [m/s] (the pass's change)."""
-    z = np.zeros((count, 6))
-    largest = 0.0
-    for p in range(count):  # forward: z = L⁻¹·(0 | target − Ċ)
-        node = nodes[p]
-        if node >= n:
-            j = node - n
-            cx, cy, cz = _rate(ja, jb, ra, rb, vel, ang, j)
-            ex, ey, ez = bias[j, 0] - cx, bias[j, 1] - cy, bias[j, 2] - cz
-            z[p, 0] += ex
-            z[p, 1] += ey
-            z[p, 2] += ez
-            largest = max(largest, np.sqrt(ex * ex + ey * ey + ez * ez))
+def substitute(nodes, parent, count, n, dinv, low, z, y):
+    """Solve H·y = z with the factors (``factor``): ``z`` (P, 6) is overwritten by the forward
+    elimination, ``y`` (P, 6) gets the solution."""
+    for p in range(count):  # forward: z ← L⁻¹·z
         q = parent[p]
         if q >= 0:
-            rows = 6 if node < n else 3
+            rows = 6 if nodes[p] < n else 3
             cols = 6 if nodes[q] < n else 3
             for v in range(cols):
                 x = 0.0
                 for k in range(rows):
                     x += low[p, k, v] * z[p, k]
                 z[q, v] -= x
-    y = np.zeros((count, 6))
     for p in range(count - 1, -1, -1):  # D⁻¹, then back: y = L⁻ᵀ·D⁻¹·z
         rows = 6 if nodes[p] < n else 3
         q = parent[p]
@@ -242,6 +229,11 @@ def solve(nodes, parent, count, n, ja, jb, ra, rb, bias, dinv, low, vel, ang, po
                 for k in range(cols):
                     x -= low[p, u, k] * y[q, k]
             y[p, u] = x
+
+
+@njit(cache=True, nogil=True)
+def apply(nodes, count, n, y, vel, ang, point):
+    """Give each body node its Δv, Δω (y's rows) and each joint node its impulse −y."""
     for p in range(count):
         node = nodes[p]
         if node < n:
@@ -251,4 +243,26 @@ def solve(nodes, parent, count, n, ja, jb, ra, rb, bias, dinv, low, vel, ang, po
         else:
             for k in range(3):
                 point[node - n, k] -= y[p, k]
+
+
+@njit(cache=True, nogil=True)
+def solve(nodes, parent, count, n, ja, jb, ra, rb, bias, dinv, low, vel, ang, point):
+    """One exact solve: the impulses that bring every DIRECT joint's Ċ to its target ``bias``
+    (J, 3) [m/s] given the velocities now, applied to ``vel``, ``ang`` and added to ``point``
+    (J, 3) [N·s]. Returns the largest |target − Ċ| met [m/s] (the pass's change)."""
+    z = np.zeros((count, 6))
+    largest = 0.0
+    for p in range(count):
+        node = nodes[p]
+        if node >= n:
+            j = node - n
+            cx, cy, cz = rate(ja, jb, ra, rb, vel, ang, j)
+            ex, ey, ez = bias[j, 0] - cx, bias[j, 1] - cy, bias[j, 2] - cz
+            z[p, 0] = ex
+            z[p, 1] = ey
+            z[p, 2] = ez
+            largest = max(largest, np.sqrt(ex * ex + ey * ey + ez * ez))
+    y = np.zeros((count, 6))
+    substitute(nodes, parent, count, n, dinv, low, z, y)
+    apply(nodes, count, n, y, vel, ang, point)
     return largest

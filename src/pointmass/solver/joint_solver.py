@@ -11,6 +11,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from . import joint_direct as jd
+from . import joint_loops as jl
 from . import joint_project
 from . import joint_stages as js
 from . import joint_tree as jt
@@ -46,8 +47,9 @@ class JointRows:
     target: np.ndarray
     row: np.ndarray
     lam: np.ndarray
-    #: Per joint ``joint_tree.OFF``, ``ITERATIVE`` or ``DIRECT`` (J,), and the DIRECT forest:
-    #: its nodes in postorder, each one's parent position, the count, and the factors.
+    #: Per joint ``joint_tree.OFF``, ``ITERATIVE``, ``DIRECT`` or ``LOOP`` (J,), and the
+    #: forest: its nodes in postorder, each one's parent position, the count, the factors,
+    #: the LOOP joints, each body's node position (−1: none) and the loops' S⁻¹.
     mode: np.ndarray
     tree: tuple
 
@@ -64,7 +66,7 @@ def prepare(bodies, joints, dt: float) -> JointRows:
     movable = b.inv_mass > 0.0
     jt.choose(j.a, j.b, movable if awake is None else awake, movable, rows.mode)
     if not DIRECT:
-        rows.mode[rows.mode == jt.DIRECT] = jt.ITERATIVE
+        rows.mode[rows.mode >= jt.DIRECT] = jt.ITERATIVE
     js.prepare(j.a, j.b, j.local_a, j.frame_a, j.frame_b, j.kind, j.limits, j.local_b,
                b.inv_mass, b.inv_inertia_world, b.position, b.orientation, dt,
                BETA, rows.ra, rows.rb, rows.kmat, rows.bias,
@@ -74,8 +76,9 @@ def prepare(bodies, joints, dt: float) -> JointRows:
 
 
 def _factor(b, j, rows: JointRows, movable: np.ndarray, point: np.ndarray, dt: float) -> tuple:
-    """Order and factor the DIRECT forest (``joint_direct``); a singular pivot (a body without
-    full inertia, repeated joints) sends its joints back to the Gauss–Seidel rows."""
+    """Order and factor the DIRECT forest (``joint_direct``) and the LOOP joints' masses
+    (``joint_loops``); a singular pivot (a body without full inertia, repeated joints) sends
+    the joints back to the Gauss–Seidel rows (all of them, or the loops only)."""
     if not (rows.mode == jt.DIRECT).any():
         return ()
     size = b.inv_mass.shape[0] + j.a.shape[0]
@@ -87,11 +90,21 @@ def _factor(b, j, rows: JointRows, movable: np.ndarray, point: np.ndarray, dt: f
     extra = np.zeros((b.inv_mass.shape[0], 3, 3))
     if GEOMETRIC:
         jd.geometric(j.a, j.b, rows.mode, rows.ra, rows.rb, point, b.inv_inertia, dt, extra)
-    if not jd.factor(nodes, parent, count, b.inv_mass.shape[0], j.a, rows.ra, rows.rb,
-                     b.inv_mass, b.inv_inertia_world, extra, dinv, low):
-        rows.mode[rows.mode == jt.DIRECT] = jt.ITERATIVE
+    n = b.inv_mass.shape[0]
+    loops = np.flatnonzero(rows.mode == jt.LOOP)
+    where = np.full(n, -1, np.int64)
+    bodies = nodes[:count] < n
+    where[nodes[:count][bodies]] = np.flatnonzero(bodies)
+    sinv = np.zeros((loops.shape[0], 3, 3))
+    if not jd.factor(nodes, parent, count, n, j.a, rows.ra, rows.rb, b.inv_mass,
+                     b.inv_inertia_world, extra, dinv, low):
+        rows.mode[rows.mode >= jt.DIRECT] = jt.ITERATIVE
         return ()
-    return nodes, parent, count, dinv, low
+    if not jl.masses(loops, nodes, parent, count, n, where, j.a, j.b, rows.ra, rows.rb, dinv,
+                     low, sinv):  # a loop the tree cannot move along (a straight ring)
+        rows.mode[loops] = jt.ITERATIVE
+        loops = loops[:0]
+    return nodes, parent, count, dinv, low, loops, where, sinv
 
 
 def warm_start(bodies, joints, rows: JointRows) -> None:
@@ -111,10 +124,15 @@ def velocity_pass(bodies, joints, rows: JointRows) -> float:
                                  b.inv_inertia_world, b.velocity, b.angular_velocity,
                                  joints.point, rows.lam, rows.mode))
     if rows.tree:
-        nodes, parent, count, dinv, low = rows.tree
-        change = max(change, float(jd.solve(nodes, parent, count, b.inv_mass.shape[0], j.a,
-                                            j.b, rows.ra, rows.rb, rows.bias, dinv, low,
-                                            b.velocity, b.angular_velocity, joints.point)))
+        nodes, parent, count, dinv, low, loops, where, sinv = rows.tree
+        n = b.inv_mass.shape[0]
+        change = max(change, float(jd.solve(nodes, parent, count, n, j.a, j.b, rows.ra,
+                                            rows.rb, rows.bias, dinv, low, b.velocity,
+                                            b.angular_velocity, joints.point)))
+        if loops.shape[0]:
+            change = max(change, float(jl.solve(
+                loops, nodes, parent, count, n, where, j.a, j.b, rows.ra, rows.rb, rows.bias,
+                dinv, low, sinv, b.velocity, b.angular_velocity, joints.point)))
     return change
 
 

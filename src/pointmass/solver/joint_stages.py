@@ -254,7 +254,7 @@ def warm_start(ja, jb, ra, rb, axis, row, inv_mass, inv_i, vel, ang, point, turn
             continue
         a = ja[j]
         b = jb[j]
-        if mode[j] == DIRECT_JOINT:  # the exact solve finds the whole impulse itself
+        if mode[j] >= DIRECT_JOINT:  # the exact solve finds the whole impulse itself
             point[j, 0] = point[j, 1] = point[j, 2] = 0.0
         px, py, pz = point[j, 0], point[j, 1], point[j, 2]
         _push(vel, ang, inv_mass, inv_i, b, 1.0, rb[j, 0], rb[j, 1], rb[j, 2], px, py, pz)
@@ -302,7 +302,7 @@ def solve_pass(ja, jb, ra, rb, kmat, bias, axis, mass, target, row, inv_mass, in
                 largest = change
             _spin(ang, inv_i, b, 1.0, d * ux, d * uy, d * uz)
             _spin(ang, inv_i, a, -1.0, d * ux, d * uy, d * uz)
-        if mode[j] == DIRECT_JOINT:
+        if mode[j] >= DIRECT_JOINT:  # DIRECT or LOOP: the tree solve's
             continue
         rax, ray, raz = ra[j, 0], ra[j, 1], ra[j, 2]
         rbx, rby, rbz = rb[j, 0], rb[j, 1], rb[j, 2]

@@ -12,8 +12,9 @@ costs O(nodes). Immovable bodies (and the world) are not nodes: a joint to one i
 with a single body. A node's pivot must be invertible: a joint node's own block is 0, so a
 joint must have a body below it — a tree holds at most one joint to the world (or to an
 immovable body), which becomes its root. What does not fit (a joint that closes a loop, a
-second anchor of a rope bridge) stays with the Gauss–Seidel rows, as do sleeping joints'
-(``mode`` OFF: not solved at all).
+second anchor of a rope bridge) is solved through the tree (``joint_loops``); sleeping
+joints (``mode`` OFF) are not solved at all. ITERATIVE (Gauss–Seidel, one joint at a time)
+is what is left when the tree cannot be factored.
 """
 
 from __future__ import annotations
@@ -25,6 +26,7 @@ from numba import njit
 OFF = 0  # both bodies asleep (or immovable): no row at all
 ITERATIVE = 1  # Gauss–Seidel, one joint at a time (``joint_stages.solve_pass``)
 DIRECT = 2  # the exact tree solve (``joint_direct``)
+LOOP = 3  # closes a loop of a tree: solved through it (``joint_loops``)
 
 
 @njit(cache=True, nogil=True, inline="always")
@@ -47,8 +49,8 @@ def _ends(ja, jb, movable, j):
 
 @njit(cache=True, nogil=True)
 def choose(ja, jb, awake, movable, mode):
-    """Fill ``mode`` (J,) with OFF, ITERATIVE or DIRECT (module docstring), in joint order:
-    the first joint that closes a loop, or the second anchor of a tree, is ITERATIVE."""
+    """Fill ``mode`` (J,) with OFF, DIRECT or LOOP (module docstring), in joint order: a
+    joint that closes a loop, or a tree's second anchor, is LOOP (``joint_loops``)."""
     n = movable.shape[0]
     uf = np.arange(n)
     anchored = np.full(n, -1, np.int64)
@@ -57,7 +59,7 @@ def choose(ja, jb, awake, movable, mode):
         if a < 0 or not (awake[a] or (b >= 0 and awake[b])):
             mode[j] = OFF
             continue
-        mode[j] = ITERATIVE
+        mode[j] = LOOP
         if b >= 0:
             ra, rb = _find(uf, a), _find(uf, b)
             if ra == rb or (anchored[ra] >= 0 and anchored[rb] >= 0):
