@@ -16,6 +16,8 @@ The impulse history keeps friction per point key (``history.py``): each point of
 keeps 1/k of the block, as the world vector j1·t1 + j2·t2 + jτ·n (the twist rides on the
 normal component, which tangent friction never uses); a manifold recalls the sum of what its
 points kept, so a point that appears or vanishes changes the warm start by its share only.
+A manifold recalls only what its passes revise (no twist for one point, nothing for μ = 0):
+an impulse no row clamps would be applied and kept again every step (``gather_friction``).
 """
 
 from __future__ import annotations
@@ -24,7 +26,7 @@ import math
 
 from numba import njit
 
-from .body_stages import _basis
+from .body_stages import _arm_mass, _basis
 
 
 @njit(cache=True, nogil=True)
@@ -51,41 +53,21 @@ def _inv_inertia_along(inv_i, i, nx, ny, nz):
             + nz * (m[2, 0] * nx + m[2, 1] * ny + m[2, 2] * nz))
 
 
-@njit(cache=True, inline="always")
-def _arm_pair(inv_i, i, rx, ry, rz, d, e):
-    """(r×d)·I⁻¹(r×e) of body i for the tangents d, e (3,) (read only)."""
-    cx = ry * d[2] - rz * d[1]
-    cy = rz * d[0] - rx * d[2]
-    cz = rx * d[1] - ry * d[0]
-    ex = ry * e[2] - rz * e[1]
-    ey = rz * e[0] - rx * e[2]
-    ez = rx * e[1] - ry * e[0]
-    m = inv_i[i]
-    return (cx * (m[0, 0] * ex + m[0, 1] * ey + m[0, 2] * ez)
-            + cy * (m[1, 0] * ex + m[1, 1] * ey + m[1, 2] * ez)
-            + cz * (m[2, 0] * ex + m[2, 1] * ey + m[2, 2] * ez))
-
-
 @njit(cache=True, nogil=True)
-def prepare_friction(start, ca, cb, n, ra, rb, mu, inv_mass, inv_i, t1, t2, fa, fb, tangent_k,
-                     tangent_mass, mass_tw, radius, fmu):
+def prepare_friction(start, ca, cb, n, ra, rb, mu, inv_mass, inv_i, t1, t2, fa, fb, mass_t1,
+                     mass_t2, mass_tw, radius, fmu):
     """Per manifold k: tangents t1, t2 (K, 3); the arms fa, fb (K, 3) from each centre of mass
-    to the friction centre; the tangents' 2×2 matrix K = J M⁻¹ Jᵀ (how a unit impulse along
-    one tangent changes the velocity along either) as (k11, k12, k22) in ``tangent_k`` and its
-    inverse, the effective mass, in ``tangent_mass`` (K, 3); the twist's effective mass; the
-    twist radius ρ [m]; μ.
-
-    The arm at the centre is not along the normal in general (a tilted box on a corner), so
-    K is not diagonal: a tangent impulse also turns the point along the other tangent. The
-    block is solved with the full inverse, as Box3D does; solving each tangent with its own
-    diagonal mass from one velocity overshoots along the coupled direction."""
+    to the friction centre; the effective masses of the two tangents and of the twist; the
+    twist radius ρ [m]; μ."""
     for k in range(t1.shape[0]):
         s0 = start[k]
         s1 = start[k + 1]
         a = ca[s0]
         b = cb[s0]
         nx, ny, nz = n[s0, 0], n[s0, 1], n[s0, 2]
-        t1[k, 0], t1[k, 1], t1[k, 2], t2[k, 0], t2[k, 1], t2[k, 2] = _basis(nx, ny, nz)
+        ax, ay, az, bx, by, bz = _basis(nx, ny, nz)
+        t1[k, 0], t1[k, 1], t1[k, 2] = ax, ay, az
+        t2[k, 0], t2[k, 1], t2[k, 2] = bx, by, bz
         inv_k = 1.0 / (s1 - s0)
         for j in range(3):
             sa = 0.0
@@ -103,26 +85,15 @@ def prepare_friction(start, ca, cb, n, ra, rb, mu, inv_mass, inv_i, t1, t2, fa, 
             rho += math.sqrt(dx * dx + dy * dy + dz * dz)
         radius[k] = rho * inv_k
         fmu[k] = mu[s0]
-        d = t1[k]
-        e = t2[k]
-        k11 = inv_mass[a] + _arm_pair(inv_i, a, fa[k, 0], fa[k, 1], fa[k, 2], d, d)
-        k22 = inv_mass[a] + _arm_pair(inv_i, a, fa[k, 0], fa[k, 1], fa[k, 2], e, e)
-        k12 = _arm_pair(inv_i, a, fa[k, 0], fa[k, 1], fa[k, 2], d, e)
+        k1 = inv_mass[a] + _arm_mass(inv_i, a, fa[k, 0], fa[k, 1], fa[k, 2], ax, ay, az)
+        k2 = inv_mass[a] + _arm_mass(inv_i, a, fa[k, 0], fa[k, 1], fa[k, 2], bx, by, bz)
         kt = _inv_inertia_along(inv_i, a, nx, ny, nz)
         if b >= 0:
-            k11 += inv_mass[b] + _arm_pair(inv_i, b, fb[k, 0], fb[k, 1], fb[k, 2], d, d)
-            k22 += inv_mass[b] + _arm_pair(inv_i, b, fb[k, 0], fb[k, 1], fb[k, 2], e, e)
-            k12 += _arm_pair(inv_i, b, fb[k, 0], fb[k, 1], fb[k, 2], d, e)
+            k1 += inv_mass[b] + _arm_mass(inv_i, b, fb[k, 0], fb[k, 1], fb[k, 2], ax, ay, az)
+            k2 += inv_mass[b] + _arm_mass(inv_i, b, fb[k, 0], fb[k, 1], fb[k, 2], bx, by, bz)
             kt += _inv_inertia_along(inv_i, b, nx, ny, nz)
-        tangent_k[k, 0], tangent_k[k, 1], tangent_k[k, 2] = k11, k12, k22
-        det = k11 * k22 - k12 * k12
-        if det > 0.0:
-            inv_det = 1.0 / det
-            tangent_mass[k, 0] = k22 * inv_det
-            tangent_mass[k, 1] = -k12 * inv_det
-            tangent_mass[k, 2] = k11 * inv_det
-        else:  # nothing can move along the tangents (scenery against scenery)
-            tangent_mass[k, 0] = tangent_mass[k, 1] = tangent_mass[k, 2] = 0.0
+        mass_t1[k] = 1.0 / k1 if k1 > 0.0 else 0.0
+        mass_t2[k] = 1.0 / k2 if k2 > 0.0 else 0.0
         mass_tw[k] = 1.0 / kt if kt > 0.0 else 0.0
 
 

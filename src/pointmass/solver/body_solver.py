@@ -33,8 +33,7 @@ class BodyRows:
     Per point (M,): ``mass_n``, ``target``, ``anchor_a``/``anchor_b`` (M, 3), ``impulse``. Per
     manifold (K,; ``body_manifolds``), rows ``start[k]`` to ``start[k + 1]``: tangents ``t1``,
     ``t2`` (K, 3), arms ``fa``, ``fb`` (K, 3) to the friction centre, μ ``mu``, twist radius
-    ``radius`` [m], the tangents' 2×2 matrix ``tangent_k`` and effective mass
-    ``tangent_mass`` (K, 3: xx, xy, yy), the twist's effective mass ``mass_tw``, and the friction
+    ``radius`` [m], effective masses ``mass_t1``, ``mass_t2``, ``mass_tw`` and the friction
     and twist impulses ``jt1``, ``jt2``, ``jtw`` [N·s, N·m·s]."""
 
     contacts: BodyContacts
@@ -50,8 +49,8 @@ class BodyRows:
     fb: np.ndarray
     mu: np.ndarray
     radius: np.ndarray
-    tangent_k: np.ndarray
-    tangent_mass: np.ndarray
+    mass_t1: np.ndarray
+    mass_t2: np.ndarray
     mass_tw: np.ndarray
     jt1: np.ndarray
     jt2: np.ndarray
@@ -68,8 +67,7 @@ class BodyRows:
         k = bm.find_manifolds(contacts.a, contacts.b, contacts.normal, start) if m else 0
         return cls(contacts, start[:k + 1], np.empty(m), np.empty(m), np.empty((m, 3)),
                    np.empty((m, 3)), np.zeros(m), *(np.empty((k, 3)) for _ in range(4)),
-                   np.empty(k), np.empty(k), np.empty((k, 3)), np.empty((k, 3)), np.empty(k),
-                   *(np.zeros(k) for _ in range(3)))
+                   *(np.empty(k) for _ in range(5)), *(np.zeros(k) for _ in range(3)))
 
 
 def solve_velocities(bodies, contacts: BodyContacts, acceleration: np.ndarray,
@@ -88,8 +86,8 @@ def solve_velocities(bodies, contacts: BodyContacts, acceleration: np.ndarray,
                b.inv_inertia_world, b.orientation, b.velocity, b.angular_velocity, acceleration,
                dt, threshold, r.mass_n, r.target, r.anchor_a, r.anchor_b)
     bm.prepare_friction(r.start, c.a, c.b, c.normal, c.r_a, c.r_b, c.friction, b.inv_mass,
-                        b.inv_inertia_world, r.t1, r.t2, r.fa, r.fb, r.tangent_k,
-                        r.tangent_mass, r.mass_tw, r.radius, r.mu)
+                        b.inv_inertia_world, r.t1, r.t2, r.fa, r.fb, r.mass_t1,
+                        r.mass_t2, r.mass_tw, r.radius, r.mu)
     kept = np.empty((c.count, 3))
     history.recall(c.key, r.impulse, kept)
     bm.gather_friction(r.start, c.normal, r.t1, r.t2, r.mu, r.radius, r.mass_tw, kept, r.jt1,
@@ -110,7 +108,7 @@ def solve_velocities(bodies, contacts: BodyContacts, acceleration: np.ndarray,
 def _passes(b, c, r: BodyRows, passes: int) -> int:
     return int(st.solve_velocities(
         r.start, c.a, c.b, c.normal, c.r_a, c.r_b, r.fa, r.fb, r.t1, r.t2, r.mu, r.radius,
-        r.mass_n, r.tangent_k, r.tangent_mass, r.mass_tw, r.target, b.inv_mass, b.inv_inertia_world,
+        r.mass_n, r.mass_t1, r.mass_t2, r.mass_tw, r.target, b.inv_mass, b.inv_inertia_world,
         b.velocity, b.angular_velocity, r.impulse, r.jt1, r.jt2, r.jtw, VELOCITY_TOLERANCE,
         passes))
 

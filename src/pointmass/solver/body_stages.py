@@ -14,9 +14,9 @@ The stages, in the order a substep runs them:
    manifold from the friction and twist its points kept (Catto 2006).
 3. ``solve_velocities`` — sequential impulses, manifold by manifold: a twist about the
    normal (within ±μ·ρ·Λ, Λ the manifold's normal impulse), friction once at the friction
-   centre on two tangents solved as one 2×2 block (clamped together to the disc μ·Λ;
-   ``body_manifolds``), then each point's normal impulse (accumulated, clamped ≥ 0), each
-   applied to v and ω of both bodies before the next row reads them.
+   centre on two tangents (clamped together to the disc μ·Λ; ``body_manifolds``), then each
+   point's normal impulse (accumulated, clamped ≥ 0), each applied to v and ω of both bodies
+   before the next row reads them.
 4. (the caller drifts the bodies: x += v·dt and the free rotation)
 5. ``project_positions`` — nonlinear Gauss–Seidel (Box2D v2's ``SolvePositionConstraints``):
    each point's current depth is recomputed from body-fixed anchors and the penetration beyond
@@ -185,15 +185,15 @@ def warm_start(start, ca, cb, n, ra, rb, fa, fb, t1, t2, inv_mass, inv_i, vel, a
 
 
 @njit(cache=True, nogil=True)
-def solve_velocities(start, ca, cb, n, ra, rb, fa, fb, t1, t2, mu, radius, mass_n, tangent_k,
-                     tangent_mass, mass_tw, target, inv_mass, inv_i, vel, ang, impulse, jt1, jt2,
+def solve_velocities(start, ca, cb, n, ra, rb, fa, fb, t1, t2, mu, radius, mass_n, mass_t1,
+                     mass_t2, mass_tw, target, inv_mass, inv_i, vel, ang, impulse, jt1, jt2,
                      jtw, tolerance, max_passes):
     """Gauss–Seidel passes (module docstring, stage 3) until no row's velocity changes by
     more than ``tolerance`` [m/s] in a pass (the twist's angular change counts times ρ), at
     most ``max_passes``. Per manifold k (rows ``start[k]`` to ``start[k + 1]``), each row
     applied before the next reads the velocities: the twist (skipped for one point), the
-    two tangents at the centre as one 2×2 block (``body_manifolds.prepare_friction``), both
-    skipped when μ = 0, then each point's normal. Returns the passes run."""
+    two tangents at the centre (clamped together), both skipped when μ = 0, then each point's
+    normal. Returns the passes run."""
     passes = 0
     while passes < max_passes:
         passes += 1
@@ -225,10 +225,8 @@ def solve_velocities(start, ca, cb, n, ra, rb, fa, fb, t1, t2, mu, radius, mass_
                     rax, ray, raz = fa[k, 0], fa[k, 1], fa[k, 2]
                     rbx, rby, rbz = fb[k, 0], fb[k, 1], fb[k, 2]
                     vx, vy, vz = _relative_velocity(vel, ang, a, b, rax, ray, raz, rbx, rby, rbz)
-                    v1 = vx * t1[k, 0] + vy * t1[k, 1] + vz * t1[k, 2]
-                    v2 = vx * t2[k, 0] + vy * t2[k, 1] + vz * t2[k, 2]
-                    new1 = jt1[k] - (tangent_mass[k, 0] * v1 + tangent_mass[k, 1] * v2)
-                    new2 = jt2[k] - (tangent_mass[k, 1] * v1 + tangent_mass[k, 2] * v2)
+                    new1 = jt1[k] - (vx * t1[k, 0] + vy * t1[k, 1] + vz * t1[k, 2]) * mass_t1[k]
+                    new2 = jt2[k] - (vx * t2[k, 0] + vy * t2[k, 1] + vz * t2[k, 2]) * mass_t2[k]
                     limit = mu[k] * total
                     size = math.sqrt(new1 * new1 + new2 * new2)
                     if size > limit:
@@ -239,8 +237,8 @@ def solve_velocities(start, ca, cb, n, ra, rb, fa, fb, t1, t2, mu, radius, mass_
                     d2 = new2 - jt2[k]
                     jt1[k] = new1
                     jt2[k] = new2
-                    change = max(abs(tangent_k[k, 0] * d1 + tangent_k[k, 1] * d2),
-                                 abs(tangent_k[k, 1] * d1 + tangent_k[k, 2] * d2))
+                    change = max(abs(d1) * (1.0 / mass_t1[k] if mass_t1[k] > 0.0 else 0.0),
+                                 abs(d2) * (1.0 / mass_t2[k] if mass_t2[k] > 0.0 else 0.0))
                     px = d1 * t1[k, 0] + d2 * t2[k, 0]
                     py = d1 * t1[k, 1] + d2 * t2[k, 1]
                     pz = d1 * t1[k, 2] + d2 * t2[k, 2]
