@@ -136,16 +136,6 @@ def velocity_pass(bodies, joints, rows: JointRows) -> float:
     return change
 
 
-def unbias(rows: JointRows) -> None:
-    """Drop the drift bias from the rows' targets (for the relax passes): the point block and
-    the hinge locks aim at Ċ = 0, a limit keeps only its speculative rule."""
-    rows.bias[:] = 0.0
-    equal = rows.row == js.EQUAL
-    rows.target[equal] = 0.0
-    limit = rows.row == js.LIMIT
-    rows.target[limit] = np.minimum(rows.target[limit], 0.0)
-
-
 def keep(joints, rows: JointRows) -> None:
     """Keep this step's angular impulses for the next warm start (the point block's already
     accumulate in ``joints.point``)."""
