@@ -133,9 +133,10 @@ def geometric(ja, jb, mode, ra, rb, point, inv_inertia, dt, extra):
                 for b in range(3):
                     extra[i, a, b] += g * ((1.0 if a == b else 0.0) - u[a] * u[b])
     for i in range(extra.shape[0]):
-        if load[i] == 0.0:
+        largest = max(inv_inertia[i, 0], inv_inertia[i, 1], inv_inertia[i, 2])
+        if load[i] == 0.0 or largest == 0.0:  # no pull, or an immovable body (not a node)
             continue
-        smallest = 1.0 / max(inv_inertia[i, 0], inv_inertia[i, 1], inv_inertia[i, 2])
+        smallest = 1.0 / largest
         rho = load[i] / smallest
         scale = 1.0 - 1.0 / rho if rho > 1.0 else 0.0
         for a in range(3):

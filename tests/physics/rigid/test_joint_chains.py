@@ -167,3 +167,20 @@ def test_a_loop_and_a_second_anchor_are_solved_through_the_tree():
     taut.add(BallJoint(planks[-1], (0.1, 0.0, 0.0)))
     rows = joint_solver.prepare(taut.bodies, taut.joints, DT)
     assert rows.mode.tolist() == [joint_tree.DIRECT] * 3 + [joint_tree.ITERATIVE]
+
+
+def test_a_chain_from_an_immovable_body_hangs_as_from_the_world():
+    """An immovable box as the anchor (inv_mass 0: not a node of the tree) holds a 20-box
+    chain as the world does: the same bottom position to 1e-9 m after 2 s."""
+    ends = []
+    for fixed in (False, True):
+        world = pm.World(gravity=(0.0, -G, 0.0))
+        above = world.add_body(Box(HALF), (0.0, 0.1, 0.0), mass=math.inf) if fixed else None
+        for k in range(20):
+            box = world.add_body(Box(HALF), (0.05, -0.1 - 0.2 * k, 0.0), mass=1.0)
+            world.add(BallJoint(box, (-0.05, 0.1, 0.0), above))
+            above = box
+        for _ in range(120):
+            world.step(DT)
+        ends.append(world.bodies.position[-1].copy())
+    assert ends[0] == pytest.approx(ends[1], abs=1e-9)
