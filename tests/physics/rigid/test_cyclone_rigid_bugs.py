@@ -1,6 +1,7 @@
 """Regression tests for Cyclone's rigid-body bugs (rigid-notes.md §1.8, R1–R11), one or more
-each, for those the rigid half covers so far. Not yet covered here: R3 aero and R4 springs
-(rigid force generators). R6 (sleeping) has more in test_sleep.py, joints in test_joints.py.
+each. R3 (aero on the surface point's velocity) and R4 (springs push both ends) are tested
+with the rigid force generators in test_body_forces.py; R6 (sleeping) has more in
+test_sleep.py, R11 (joints) in test_joints.py and test_joint_chains.py.
 """
 
 import math
