@@ -59,24 +59,30 @@ def _gather(rows, kept, out):
             out[c] = kept[rows[c]]
 
 
+#: The empty history's arrays, shared (with no element, nothing can be written into them): a
+#: world whose solver clears the history every step (nothing touching) allocates nothing for it.
+_EMPTY_KEYS = np.zeros(0, np.int64)
+_EMPTY_IMPULSES = np.zeros(0)
+
+
 class ImpulseHistory:
     """Keys → (normal impulse [N·s], friction impulse [N·s] (3,)) kept from the last step."""
 
     def __init__(self) -> None:
-        self._keys = np.zeros(0, np.int64)
-        self._normal = np.zeros(0)
+        self._keys = _EMPTY_KEYS
+        self._normal = _EMPTY_IMPULSES
         self._tangent: np.ndarray | None = None
         # Where each kept contact stood in the order it was given to ``keep`` (sorted row ->
         # position, and the inverse); empty after pick, merge or restore (no guessing then).
-        self._order = np.zeros(0, np.int64)
-        self._rank = np.zeros(0, np.int64)
+        self._order = self._rank = _EMPTY_KEYS
 
     def __len__(self) -> int:
         return int(self._keys.shape[0])
 
     def clear(self) -> None:
         """Forget everything (after a reset, so a replay is bit-identical to the first run)."""
-        self.__init__()
+        if self._keys.shape[0] or self._order.shape[0] or self._tangent is not None:
+            self.__init__()
 
     def snapshot(self) -> tuple:
         """What is kept now, to ``restore`` (the world undoes a step that blew up)."""
@@ -84,7 +90,7 @@ class ImpulseHistory:
 
     def restore(self, snap: tuple) -> None:
         self._keys, self._normal, self._tangent = snap
-        self._order = self._rank = np.zeros(0, np.int64)
+        self._order = self._rank = _EMPTY_KEYS
 
     @property
     def keys(self) -> np.ndarray:
@@ -113,7 +119,7 @@ class ImpulseHistory:
             np.concatenate([tangents[0], tangents[1][new]])
         order = np.argsort(keys, kind="stable")
         self._keys, self._normal = keys[order], normal[order]
-        self._order = self._rank = np.zeros(0, np.int64)
+        self._order = self._rank = _EMPTY_KEYS
         self._tangent = tangent[order] if tangent is not None else None
 
     def recall(self, keys: np.ndarray, normal: np.ndarray, tangent: np.ndarray) -> None:

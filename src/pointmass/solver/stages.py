@@ -22,7 +22,7 @@ from .kernels import (
     relative,
     slide,
 )
-from .sweeps import projection_rows, velocity_rows
+from .sweeps import has_friction, projection_rows, velocity_rows
 
 
 @njit(cache=True, nogil=True)
@@ -139,9 +139,10 @@ def solve_velocities(bod, con, dt, tolerance, max_passes):
     Returns (passes, resolutions)."""
     passes = 0
     used = 0
+    friction = has_friction(con)
     while passes < max_passes:
         passes += 1
-        largest, hits = velocity_rows(bod, con, None, 0, con.a.shape[0], dt)
+        largest, hits = velocity_rows(bod, con, None, 0, con.a.shape[0], dt, friction)
         used += hits
         if largest <= tolerance:
             break
