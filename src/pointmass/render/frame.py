@@ -73,7 +73,8 @@ class FrameState:
         # markers with the anchors (they do not); box bodies join the scene's boxes.
         bodies = scene.world.bodies
         balls, markers = body_visuals.sphere_rows(bodies, gather.SPHERE_FLOATS)
-        spheres = np.concatenate([spheres[:n], balls, markers, spheres[n:]])
+        if len(balls) or len(markers):
+            spheres = np.concatenate([spheres[:n], balls, markers, spheres[n:]])
         boxes = [*scene.boxes, *body_visuals.box_visuals(bodies)]
         casters = n + len(balls)
 

@@ -66,6 +66,33 @@ def splat(spheres, region, ground, strength, out):
                 out[i, j] = a + out[i, j] * (1.0 - a)
 
 
+@njit(cache=True, nogil=True)
+def shadow_region(spheres, ground, texels):
+    """The ground square (x0, z0, side) [m] around every shadow ``splat`` would draw (side 0
+    when none is cast), in one pass over the (N, >=4) sphere rows.
+
+    Wide enough that the biggest shadow spans at most ~250 texels: soft enough, and the look of
+    the GL point sprites this map was first drawn with (their size limit); a texel of margin on
+    each side.
+    """
+    lo_x = lo_z = math.inf
+    hi_x = hi_z = -math.inf
+    widest = 0.0
+    for k in range(spheres.shape[0]):
+        x, y, z, r = spheres[k, 0], spheres[k, 1], spheres[k, 2], spheres[k, 3]
+        if not (r > 0.0 and y >= ground and y - r - ground < 5.0 * r + FADE_REACH):
+            continue
+        spread = SPREAD_FAR * r
+        lo_x, hi_x = min(lo_x, x - spread), max(hi_x, x + spread)
+        lo_z, hi_z = min(lo_z, z - spread), max(hi_z, z + spread)
+        widest = max(widest, spread)
+    if widest == 0.0:
+        return 0.0, 0.0, 0.0
+    side = max(hi_x - lo_x, hi_z - lo_z, 4.5 * widest * texels / 250.0 / 2.0)
+    side *= 1.0 + 2.0 / texels
+    return 0.5 * (lo_x + hi_x) - 0.5 * side, 0.5 * (lo_z + hi_z) - 0.5 * side, side
+
+
 def shadow_map(spheres: np.ndarray, region, ground: float, strength: float,
                texels: int) -> np.ndarray:
     """A new (texels, texels) float32 darkness map of ``spheres`` over ``region`` (see

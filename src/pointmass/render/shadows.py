@@ -14,7 +14,7 @@ import moderngl
 import numpy as np
 
 from ..scene import Scene
-from .shadow_splat import SPREAD_FAR, shadow_map
+from .shadow_splat import SPREAD_FAR, shadow_map, shadow_region
 
 #: Texture side [texels].
 TEXELS = 512
@@ -55,7 +55,7 @@ class ShadowMap:
             box_rows[:, 3] = [0.75 * float(np.linalg.norm(b.half_size)) for b in solid]
         self.used = TEXELS if len(rows) <= CROWD else TEXELS // 2
         casters = np.concatenate([rows[rows[:, 7] < 0.5, :4], box_rows])
-        self.region = _region(casters, ground, self.used)
+        self.region = shadow_region(casters, ground, self.used)
         if self.region[2] <= 0.0:
             return
         dark = shadow_map(casters, self.region, ground, strength, self.used)
@@ -64,19 +64,3 @@ class ShadowMap:
     def release(self) -> None:
         self.texture.release()
 
-
-def _region(spheres: np.ndarray, ground: float, texels: int) -> tuple[float, float, float]:
-    """The square (x0, z0, side) [m] around every shadow cast; side 0 when none is."""
-    x, y, z, r = (spheres[:, k] for k in range(4))
-    cast = (r > 0) & (y >= ground) & (y - r - ground < 5.0 * r + 1.5)
-    if not cast.any():
-        return (0.0, 0.0, 0.0)
-    spread = MAX_SPREAD * r[cast]
-    lo_x, hi_x = float((x[cast] - spread).min()), float((x[cast] + spread).max())
-    lo_z, hi_z = float((z[cast] - spread).min()), float((z[cast] + spread).max())
-    # Wide enough that the biggest shadow spans at most ~250 texels: soft enough, and the
-    # look of the GL point sprites this map was first drawn with (their size limit).
-    side = max(hi_x - lo_x, hi_z - lo_z, 4.5 * float(spread.max()) * texels / 250.0 / 2.0)
-    side *= 1.0 + 2.0 / texels                     # a texel of margin on each side
-    cx, cz = 0.5 * (lo_x + hi_x), 0.5 * (lo_z + hi_z)
-    return (cx - 0.5 * side, cz - 0.5 * side, side)
