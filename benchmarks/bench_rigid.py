@@ -1,7 +1,7 @@
 """pointmass rigid bodies beside PyBullet and MuJoCo on three box scenes, measured the same way.
 
     PYTHONPATH=src .venv/bin/python benchmarks/bench_rigid.py [--scenes tower pyramid pit]
-        [--engines ...] [--repeats 1] [--budget 300] [--quick]
+        [--engines ...] [--repeats 1] [--budget 300] [--quick] [--seed 0]
     (pip install "pointmass[bench]" for the peers; an engine that is missing is skipped)
 
 The scenes (rigid-notes §3; unit cubes of 1 kg unless named, μ = 0.5 combined, e = 0):
@@ -359,12 +359,15 @@ def main() -> None:
                         help="wall-clock cap [s] on one run's timed stepping")
     parser.add_argument("--quick", action="store_true",
                         help=f"120 steps instead of {STEPS}, and a 250-box pit")
+    parser.add_argument("--seed", type=int, default=0,
+                        help="the pit's random seed (orientations and jitter): when the pile "
+                        "calms, and so when it sleeps, differs from seed to seed")
     parser.add_argument("--profile", action="store_true",
                         help="instead of the tables: cProfile pointmass's world.step per scene")
     args = parser.parse_args()
     steps = 120 if args.quick else STEPS
     builders = {"tower": tower, "pyramid": pyramid,
-                "pit": (lambda: pit(250)) if args.quick else pit}
+                "pit": lambda: pit(250 if args.quick else 1000, args.seed)}
     if args.profile:
         warm_pointmass()
         for scene_name in args.scenes:

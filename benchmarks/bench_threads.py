@@ -55,7 +55,7 @@ def main() -> None:
     bench_peers.run_pointmass(100)  # compile outside the timing
     pit(200, parallel=True)
     start = time.perf_counter()
-    serial, serial_pile, _serial_hash = pit(n_pit, parallel=False)
+    serial, serial_pile, _ = pit(n_pit, parallel=False)
     print(f"pit N = {n_pit}, serial path: {serial:.3g} body-steps/s, mean |v| "
           f"{serial_pile['mean |v|']:.3f} m/s, overlap {serial_pile['sphere overlap [mm]']:.1f} "
           f"mm  ({time.perf_counter() - start:.0f} s)")

@@ -222,3 +222,4 @@ def _restore_world_state(world, state: tuple) -> None:
     world.impulses.clear()
     world.body_impulses.clear()
     world.sleeping_impulses.clear()
+    world.joints.clear_impulses()

@@ -18,6 +18,8 @@ from .rigid.bodies import Bodies, Body
 from .rigid.collide import generate as generate_body_contacts
 from .rigid.contacts import BodyContacts
 from .rigid.forces import BodyForceGenerator
+from .rigid.joint_set import Joints
+from .rigid.joints import Joint
 from .rigid.particle_body import add_particle_contacts
 from .rigid.step import integrate_positions, integrate_velocities
 from .solver import ImpulseHistory, Solver, SolveStats
@@ -228,6 +230,9 @@ class World:
         self.forces: list[ForceGenerator] = []
         #: Rigid-body force generators (``pointmass.rigid.forces``), applied before the kick.
         self.body_forces: list[BodyForceGenerator] = []
+        #: Joints between rigid bodies (``pointmass.rigid.joints``, ``add``); jointed bodies
+        #: do not collide with each other.
+        self.joints = Joints()
         self.contact_generators: list[ContactGenerator] = []
         self.contacts = ContactBuffer()
         self.solver = Solver()
@@ -373,13 +378,14 @@ class World:
         return Body(self.bodies, index)
 
     def add(self, generator):
-        """Add a force generator, a rigid-body force generator (``pointmass.rigid.forces``)
-        or a contact generator; returns it (to keep as a handle).
+        """Add a force generator, a rigid-body force generator (``pointmass.rigid.forces``),
+        a joint (``pointmass.rigid.joints``) or a contact generator; returns it (to keep as a
+        handle). A joint's angles are measured from the pose its bodies have now.
 
         Particle and body indices are checked here, against those that exist now.
         """
         if any(generator is g for g in (*self.forces, *self.contact_generators,
-                                        *self.body_forces)):
+                                        *self.body_forces, *self.joints)):
             raise ValueError(f"{type(generator).__name__} is already in this world: adding it "
                              "again would apply it twice (add another instance for more)")
         if isinstance(generator, ForceGenerator):
@@ -393,8 +399,12 @@ class World:
             self.body_forces.append(generator)
             self._checked_bodies = max(self._checked_bodies, self.bodies.count)
             return generator
+        elif isinstance(generator, Joint):
+            self.joints.add(generator, self.bodies)
+            self._checked_bodies = max(self._checked_bodies, self.bodies.count)
+            return generator
         else:
-            raise TypeError(f"world.add takes a ForceGenerator, BodyForceGenerator or "
+            raise TypeError(f"world.add takes a ForceGenerator, BodyForceGenerator, Joint or "
                             f"ContactGenerator, got "
                             f"{type(generator).__name__}")
         self._checked_count = max(self._checked_count, self.particles.count)
@@ -417,7 +427,7 @@ class World:
         self._checked_count = count
         bodies = self.bodies.count
         if bodies < self._checked_bodies:
-            for generator in self.body_forces:
+            for generator in (*self.body_forces, *self.joints):
                 try:
                     generator.validate(self.bodies)
                 except (IndexError, ValueError) as error:
@@ -435,7 +445,10 @@ class World:
         return probe
 
     def remove(self, generator) -> None:
-        """Remove a generator added with ``add``."""
+        """Remove a generator (or a joint) added with ``add``."""
+        if generator in self.joints:
+            self.joints.remove(generator)
+            return
         for group in (self.forces, self.contact_generators, self.body_forces):
             if generator in group:
                 group.remove(generator)
@@ -461,7 +474,8 @@ class World:
             self._wake_all()  # bodies put to sleep by hand while sleeping is off
         saved = (self.particles.snapshot(), self.time, self.impulses.snapshot(),
                  self.bodies.snapshot(), self.body_impulses.snapshot(),
-                 self.sleeping_impulses.snapshot()) if self._substeps > 1 else None
+                 self.sleeping_impulses.snapshot(), self.joints.snapshot()) \
+            if self._substeps > 1 else None
         iterations = velocity_passes = position_passes = 0
         try:
             for _ in range(self._substeps):
@@ -477,6 +491,7 @@ class World:
                 self.bodies.restore(saved[3])
                 self.body_impulses.restore(saved[4])
                 self.sleeping_impulses.restore(saved[5])
+                self.joints.restore(saved[6])
             raise
         self.time += float(dt)
         if self.bodies.count:
@@ -590,11 +605,12 @@ class World:
             if kept is not None:
                 b.force[:], b.torque[:] = kept
         if packed is None:
-            rows = self.solver.solve_bodies(b, self.body_contacts, acc, self.body_impulses, dt)
+            rows = self.solver.solve_bodies(b, self.body_contacts, acc, self.body_impulses, dt,
+                                            self.joints)
         else:
             acc = np.concatenate([acc, p.acceleration[packed.selected]])
             rows = self.solver.solve_bodies(packed, self.body_contacts, acc,
-                                            self.body_impulses, dt)
+                                            self.body_impulses, dt, self.joints)
             packed.take_velocities(b, p, dt)
         bad = integrate_positions(b.position, b.orientation, b.velocity, b.angular_velocity,
                                   b.inv_inertia, b.inv_inertia_world, dt, b.awake)
@@ -603,10 +619,10 @@ class World:
                 f"body {bad} became non-finite at t = {self.time:.6g} s (position "
                 f"{b.position[bad].tolist()}, velocity {b.velocity[bad].tolist()})")
         if packed is None:
-            self.solver.project_bodies(b, rows, self.body_impulses)
+            self.solver.project_bodies(b, rows, self.body_impulses, self.joints)
         else:
             packed.give_positions(b, p)
-            self.solver.project_bodies(packed, rows, self.body_impulses)
+            self.solver.project_bodies(packed, rows, self.body_impulses, self.joints)
             packed.take_positions(b, p)
         self._body_rows = rows
         return rows
@@ -625,7 +641,8 @@ class World:
         b = self.bodies
         p = self.particles
         planes = [g for g in self.contact_generators if isinstance(g, Plane)]
-        links = sleeping.check_links(self.island_links, b.count) if self._sleep else None
+        links = self._links() if self._sleep else None
+        exclude = self.joints.pair_keys(b.count) if self.joints else None
         while True:
             if b.wakes != self._wakes_seen:  # islands woke (here, or by hand since)
                 self._wakes_seen = b.wakes
@@ -634,7 +651,8 @@ class World:
             if live is not None and not live.any():  # all asleep or still: nothing to find
                 self.body_contacts.resize(0)
             else:
-                generate_body_contacts(b, planes, dt, self.body_contacts, active=live)
+                generate_body_contacts(b, planes, dt, self.body_contacts, active=live,
+                                       exclude=exclude)
             packed = add_particle_contacts(b, p, dt, self.body_contacts, self._particle_friction,
                                            self._particle_restitution)
             full = acc if packed is None else np.concatenate(
@@ -647,10 +665,17 @@ class World:
                 return packed, full
             self._kick(dt, b.wake_islands(np.unique(b.island[woken])))
 
+    def _links(self) -> np.ndarray:
+        """The body pairs (K, 2) that share an island: ``island_links`` and every joint's."""
+        links = sleeping.check_links(self.island_links, self.bodies.count)
+        if not self.joints:
+            return links
+        return np.concatenate([links, self.joints.body_pairs()])
+
     def _fall_asleep(self, dt: float) -> None:
         """End of a step: islands still for long enough fall asleep (``rigid/sleep.py``)."""
         b = self.bodies
-        links = sleeping.check_links(self.island_links, b.count)
+        links = self._links()
         slept = sleeping.fall_asleep(b, self.body_contacts, links, dt)
         if slept is not None:
             self.sleeping_impulses.put_away(self.body_impulses, slept)

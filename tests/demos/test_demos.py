@@ -16,7 +16,7 @@ NAMES = [demo_name(p) for p in demo_paths()]
 #: Smaller versions of the big scenes, so the whole suite stays quick.
 SMALL = {"ball_pit": ["count=200"], "cloth": ["size=10"]}
 #: Simulated seconds per demo: long enough for its oracle to have something to judge.
-SECONDS = {"terminal_velocity": 5.5, "buoyancy": 9.0, "newtons_cradle": 1.5}
+SECONDS = {"terminal_velocity": 5.5, "buoyancy": 9.0, "newtons_cradle": 1.5, "ragdoll": 4.5}
 
 #: Cyclone's rigid-body demos: past the break, the flight's checks, the settled draft.
 SECONDS.update({"flightsim": 4.5, "sailboat": 4.0, "fracture": 6.0})

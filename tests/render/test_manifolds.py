@@ -10,6 +10,7 @@ import pytest
 
 import pointmass as pm
 from pointmass.render import manifolds
+from pointmass.rigid.collide import SPECULATIVE_MARGIN
 from pointmass.rigid.quaternion import quat_from_axis_angle
 from pointmass.rigid.shapes import Box
 
@@ -73,14 +74,16 @@ def test_two_stacked_boxes_give_two_manifolds_and_the_top_ones_are_on_the_lower_
 
 
 def test_speculative_points_are_dimmer():
-    """A box 1 cm above the ground, at rest, in zero gravity: its points are a gap inside the
-    margin (depth −1 cm), drawn at the speculative alpha."""
+    """A box half the speculative margin above the ground, at rest, in zero gravity: its
+    points are a gap inside the margin (depth −gap), drawn at the speculative alpha."""
+    gap = 0.5 * SPECULATIVE_MARGIN
     world = pm.World(gravity=(0.0, 0.0, 0.0))
     world.add(pm.Ground())
-    world.add_body(Box((HALF, HALF, HALF)), (0.0, HALF + 0.01, 0.0), mass=1.0)
+    world.add_body(Box((HALF, HALF, HALF)), (0.0, HALF + gap, 0.0), mass=1.0)
     world.step(1 / 60)
     _points, _normals, depth, _, _ = manifolds.contact_points(world)
-    np.testing.assert_allclose(depth, -0.01, atol=1e-9)
+    assert len(depth) == 4
+    np.testing.assert_allclose(depth, -gap, atol=1e-9)
     rows = manifolds.manifold_lines(world, 1.0)
     normals, dots = rows[1], rows[3]
     assert (normals[:, 9] == manifolds.SPECULATIVE_ALPHA).all()

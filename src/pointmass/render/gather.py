@@ -13,12 +13,12 @@ LINE_FLOATS = 12
 #: Floats per sphere instance: centre (3), radius, rgb, glow (1: an unlit glowing sprite).
 SPHERE_FLOATS = 8
 
-LINK_KINDS = ("spring", "bungee", "cable", "rod")
+LINK_KINDS = ("spring", "bungee", "cable", "rod", "joint")
 
 
 def generators(scene: Scene):
-    """Every force and contact generator of the scene's world."""
-    return [*scene.world.forces, *scene.world.contact_generators]
+    """Every force and contact generator of the scene's world, and its joints."""
+    return [*scene.world.forces, *scene.world.contact_generators, *scene.world.joints]
 
 
 def anchor_points(scene: Scene) -> np.ndarray:

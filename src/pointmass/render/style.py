@@ -53,12 +53,14 @@ ANCHOR_COLOR = (0.12, 0.12, 0.14)
 ANCHOR_SCALE = 0.7
 
 #: Per kind of link: width [px at 720 rows], dash period for slack links [m] (0: never dashed).
-LINK_WIDTH = {"spring": 3.0, "bungee": 2.5, "cable": 2.0, "rod": 5.0}
-LINK_SLACK_DASH = {"spring": 0.0, "bungee": 0.12, "cable": 0.12, "rod": 0.0}
+LINK_WIDTH = {"spring": 3.0, "bungee": 2.5, "cable": 2.0, "rod": 5.0, "joint": 4.0}
+LINK_SLACK_DASH = {"spring": 0.0, "bungee": 0.12, "cable": 0.12, "rod": 0.0, "joint": 0.0}
 #: Base colors where the strain does not color the link.
 CABLE_COLOR = (0.85, 0.72, 0.50)
 ROD_COLOR = (0.72, 0.77, 0.84)
 BUNGEE_COLOR = (0.98, 0.62, 0.18)
+#: Joints: the lines body centre → joint point → the other body's centre (a top's stem).
+JOINT_COLOR = (0.92, 0.92, 0.97)
 #: Spring colors: fully compressed, at rest, fully stretched (strain ±STRAIN_FULL).
 SPRING_COMPRESSED = np.array([0.25, 0.50, 1.00])
 SPRING_REST = np.array([0.92, 0.92, 0.85])
@@ -99,4 +101,6 @@ def link_colors(kind: str, strain: np.ndarray) -> np.ndarray:
         return np.asarray(BUNGEE_COLOR) + (SPRING_STRETCHED - BUNGEE_COLOR) * taut
     if kind == "cable":
         return np.tile(CABLE_COLOR, (k, 1))
+    if kind == "joint":
+        return np.tile(JOINT_COLOR, (k, 1))
     return np.tile(ROD_COLOR, (k, 1))

@@ -10,4 +10,7 @@ pairs and planes through the narrow phase. The solver's body stage is in
 generators (springs on both ends, aero on the point velocity, buoyancy, explosion, user
 callables) for ``World.add``. islands: union–find over touching bodies and the still-timers;
 sleep: what wakes an island and the warm start a sleeping island keeps (``World(sleep=True)``).
+joints: ``BallJoint`` (cone and twist limits) and ``HingeJoint`` (angle limits) for
+``World.add``; joint_set: the world's ``Joints`` and their warm start (the kernels:
+``pointmass.solver.joint_stages`` / ``joint_project`` / ``joint_solver``).
 """

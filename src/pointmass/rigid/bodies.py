@@ -14,10 +14,12 @@ from __future__ import annotations
 import math
 
 import numpy as np
+from numba import njit
 
 from .. import _validate as check
 from ..particles import inverse_masses
 from .quaternion import world_inv_inertia
+from .scalar import qrot_inv
 from .shapes import NONE, Box, Sphere, mass_properties
 
 _FIELDS_3 = ("position", "velocity", "angular_velocity", "force", "torque", "inv_inertia", "size")
@@ -316,22 +318,10 @@ class Bodies:
 
     # -- derived -------------------------------------------------------------------------------
     def kinetic_energy(self) -> float:
-        """Σ ½ m|v|² + ½ ω·Iω over bodies with finite mass / moments [J] (vectorised: the world
-        sums it every step)."""
-        inv_m = self.inv_mass
-        moving = inv_m > 0
-        v = self.velocity[moving]
-        total = 0.5 * float(np.sum(np.einsum("ij,ij->i", v, v) / inv_m[moving]))
-        inv = self.inv_inertia
-        spinning = (inv > 0).all(axis=1)
-        if spinning.any():
-            q = self.orientation[spinning]
-            w = self.angular_velocity[spinning]
-            u = -q[:, 1:]  # the conjugate turns world into body coordinates
-            t = 2.0 * np.cross(u, w)
-            wb = w + q[:, :1] * t + np.cross(u, t)
-            total += 0.5 * float(np.sum(wb * wb / inv[spinning]))
-        return total
+        """Σ ½ m|v|² + ½ ω·Iω over bodies with finite mass / moments [J] (one kernel: the world
+        sums it every step, and numpy's temporaries cost 18 % of a 10-box tower's step)."""
+        return float(_kinetic_energy(self.velocity, self.angular_velocity, self.orientation,
+                                     self.inv_mass, self.inv_inertia))
 
     def angular_momentum(self, index: int) -> np.ndarray:
         """I_world·ω about the centre of mass [kg m²/s], shape (3,), for a body whose three
@@ -497,3 +487,19 @@ class Body:
     def to_world(self, local) -> np.ndarray:
         """World position [m] of a body-space point [m]."""
         return self.position + world_rotation(self.orientation) @ check.vec3(local, "local")
+
+
+@njit(cache=True, nogil=True)
+def _kinetic_energy(vel, ang, quat, inv_mass, inv_inertia):
+    """``Bodies.kinetic_energy``: rotation in body coordinates, where I is diagonal; a body
+    with an infinite moment about any axis contributes no rotational energy."""
+    total = 0.0
+    for i in range(vel.shape[0]):
+        if inv_mass[i] > 0.0:
+            total += 0.5 * (vel[i, 0] ** 2 + vel[i, 1] ** 2 + vel[i, 2] ** 2) / inv_mass[i]
+        ix, iy, iz = inv_inertia[i, 0], inv_inertia[i, 1], inv_inertia[i, 2]
+        if ix > 0.0 and iy > 0.0 and iz > 0.0:
+            wx, wy, wz = qrot_inv(quat[i, 0], quat[i, 1], quat[i, 2], quat[i, 3],
+                                  ang[i, 0], ang[i, 1], ang[i, 2])
+            total += 0.5 * (wx * wx / ix + wy * wy / iy + wz * wz / iz)
+    return total

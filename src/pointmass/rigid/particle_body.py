@@ -39,7 +39,8 @@ from .narrow_sphere import sphere_box, sphere_sphere
 from .shapes import BOX, SPHERE
 
 #: Gap [m] below which a particle–body pair reports a speculative point, besides what the two
-#: can travel in the step (the bodies' ``collide.SPECULATIVE_MARGIN``).
+#: can travel in the step (Box3D's speculative distance; body–body pairs use 5 mm,
+#: ``collide.SPECULATIVE_MARGIN``, a choice measured on box piles only).
 PARTICLE_MARGIN = 0.02
 
 
@@ -132,6 +133,7 @@ class Packed:
         self.position = np.concatenate([b.position, origin])
         self.velocity = np.concatenate([b.velocity, particles.velocity[selected]])
         self.angular_velocity = np.concatenate([b.angular_velocity, np.zeros((k, 3))])
+        self.awake = np.concatenate([b.awake, np.ones(k, bool)])  # joints skip sleeping rows
         #: Sleeping bodies that particles rest on, immovable in this view (``freeze``).
         self.frozen: np.ndarray | None = None
 

@@ -5,23 +5,28 @@ the point by (wa + wb + (rA×d)·IA⁻¹(rA×d) + (rB×d)·IB⁻¹(rB×d))·|P|,
 the inverse of that (a particle is the case r = 0, I⁻¹ = 0: 1/(wa + wb), ``stages.prepare``).
 The stages, in the order a substep runs them:
 
-1. ``prepare`` — tangent basis, normal and tangent effective masses, and the target separating
-   velocity: the bounce −e·vs with the resting-contact trick (``kernels.bounce_target``, the
-   same kernel as the particles) for a point that closes within the step, else gap/dt for a
-   speculative point (it may close by its gap, no more), else 0.
-2. ``warm_start`` — each point begins from the normal and friction impulses its key needed
-   last step (Catto 2006).
-3. ``solve_velocities`` — sequential impulses: per point, friction on two tangents (clamped
-   together to the disc μ·λn: Coulomb's cone, per point), then the normal impulse
-   (accumulated, clamped ≥ 0), applied to v and ω of both bodies.
+1. ``prepare`` — per point, the normal effective mass and the target separating velocity:
+   the bounce −e·vs with the resting-contact trick (``kernels.bounce_target``, the same kernel
+   as the particles) for a point that closes within the step, else gap/dt for a speculative
+   point (it may close by its gap, no more), else 0; per manifold, the friction block
+   (``body_manifolds.prepare_friction``).
+2. ``warm_start`` — each point begins from the normal impulse its key needed last step, each
+   manifold from the friction and twist its points kept (Catto 2006).
+3. ``solve_velocities`` — sequential impulses, manifold by manifold: a twist about the
+   normal (within ±μ·ρ·Λ, Λ the manifold's normal impulse), friction once at the friction
+   centre on two tangents (clamped together to the disc μ·Λ; ``body_manifolds``), then each
+   point's normal impulse (accumulated, clamped ≥ 0), each applied to v and ω of both bodies
+   before the next row reads them.
 4. (the caller drifts the bodies: x += v·dt and the free rotation)
 5. ``project_positions`` — nonlinear Gauss–Seidel (Box2D v2's ``SolvePositionConstraints``):
    each point's current depth is recomputed from body-fixed anchors and the penetration beyond
    ``SLOP`` is removed in part (``BAUMGARTE``), moving positions and orientations only. No
    velocity changes, so the projection adds no energy and bounces nothing.
 
-The stores into v and ω are written out in the loop bodies: an inlined helper that stores into
-arrays was 4–20× slower in this code base's particle kernels.
+The stores into v and ω are written out in the loop bodies (the pure ``_kick`` computes them): an
+inlined helper that stores into arrays was 4–20× slower in this code base's particle kernels,
+and one loop over a manifold's rows that chose each row's kind through a 12-value helper was
+2× slower than the per-point friction it replaced (measured on the pyramid).
 """
 
 from __future__ import annotations
@@ -78,20 +83,16 @@ def _basis(nx, ny, nz):
 
 @njit(cache=True, nogil=True)
 def prepare(ca, cb, n, ra, rb, depth, e, inv_mass, inv_i, quat, vel, ang, acc, dt, threshold,
-            t1, t2, mass_n, mass_t1, mass_t2, target, la, lb):
-    """Per point: tangents t1, t2; effective masses; target separating velocity [m/s]; the
-    body-fixed anchors la, lb (lb: the world point for scenery) the projection follows."""
+            mass_n, target, la, lb):
+    """Per point: the normal effective mass; the target separating velocity [m/s]; the
+    body-fixed anchors la, lb (lb: the world point for scenery) the projection follows. (The
+    friction is prepared per manifold: ``body_manifolds.prepare_friction``.)"""
     for c in range(ca.shape[0]):
         a = ca[c]
         b = cb[c]
         nx, ny, nz = n[c, 0], n[c, 1], n[c, 2]
-        ax, ay, az, bx, by, bz = _basis(nx, ny, nz)
-        t1[c, 0], t1[c, 1], t1[c, 2] = ax, ay, az
-        t2[c, 0], t2[c, 1], t2[c, 2] = bx, by, bz
         rax, ray, raz = ra[c, 0], ra[c, 1], ra[c, 2]
         kn = inv_mass[a] + _arm_mass(inv_i, a, rax, ray, raz, nx, ny, nz)
-        k1 = inv_mass[a] + _arm_mass(inv_i, a, rax, ray, raz, ax, ay, az)
-        k2 = inv_mass[a] + _arm_mass(inv_i, a, rax, ray, raz, bx, by, bz)
         vx, vy, vz = _point_velocity(vel, ang, a, rax, ray, raz)
         along = abs(acc[a, 0] * nx + acc[a, 1] * ny + acc[a, 2] * nz)
         la[c, 0], la[c, 1], la[c, 2] = qrot_inv(quat[a, 0], quat[a, 1], quat[a, 2], quat[a, 3],
@@ -99,8 +100,6 @@ def prepare(ca, cb, n, ra, rb, depth, e, inv_mass, inv_i, quat, vel, ang, acc, d
         if b >= 0:
             rbx, rby, rbz = rb[c, 0], rb[c, 1], rb[c, 2]
             kn += inv_mass[b] + _arm_mass(inv_i, b, rbx, rby, rbz, nx, ny, nz)
-            k1 += inv_mass[b] + _arm_mass(inv_i, b, rbx, rby, rbz, ax, ay, az)
-            k2 += inv_mass[b] + _arm_mass(inv_i, b, rbx, rby, rbz, bx, by, bz)
             ux, uy, uz = _point_velocity(vel, ang, b, rbx, rby, rbz)
             vx -= ux
             vy -= uy
@@ -111,8 +110,6 @@ def prepare(ca, cb, n, ra, rb, depth, e, inv_mass, inv_i, quat, vel, ang, acc, d
         else:
             lb[c, 0], lb[c, 1], lb[c, 2] = rb[c, 0], rb[c, 1], rb[c, 2]
         mass_n[c] = 1.0 / kn if kn > 0.0 else 0.0
-        mass_t1[c] = 1.0 / k1 if k1 > 0.0 else 0.0
-        mass_t2[c] = 1.0 / k2 if k2 > 0.0 else 0.0
         vs = vx * nx + vy * ny + vz * nz
         d = depth[c]
         bounce = 0.0
@@ -124,113 +121,163 @@ def prepare(ca, cb, n, ra, rb, depth, e, inv_mass, inv_i, quat, vel, ang, acc, d
             target[c] = d / dt if d < 0.0 else 0.0
 
 
-@njit(cache=True, nogil=True)
-def warm_start(ca, cb, n, ra, rb, t1, t2, inv_mass, inv_i, vel, ang, impulse, jt1, jt2):
-    """Apply each point's remembered impulses (normal ``impulse``, friction ``jt1``, ``jt2``)."""
-    for c in range(ca.shape[0]):
-        px = impulse[c] * n[c, 0] + jt1[c] * t1[c, 0] + jt2[c] * t2[c, 0]
-        py = impulse[c] * n[c, 1] + jt1[c] * t1[c, 1] + jt2[c] * t2[c, 1]
-        pz = impulse[c] * n[c, 2] + jt1[c] * t1[c, 2] + jt2[c] * t2[c, 2]
-        if px == 0.0 and py == 0.0 and pz == 0.0:
-            continue
-        a = ca[c]
-        b = cb[c]
-        w = inv_mass[a]
-        cx = ra[c, 1] * pz - ra[c, 2] * py
-        cy = ra[c, 2] * px - ra[c, 0] * pz
-        cz = ra[c, 0] * py - ra[c, 1] * px
-        for k in range(3):
-            vel[a, k] += w * (px if k == 0 else py if k == 1 else pz)
-            ang[a, k] += inv_i[a, k, 0] * cx + inv_i[a, k, 1] * cy + inv_i[a, k, 2] * cz
-        if b >= 0:
-            w = inv_mass[b]
-            cx = rb[c, 1] * pz - rb[c, 2] * py
-            cy = rb[c, 2] * px - rb[c, 0] * pz
-            cz = rb[c, 0] * py - rb[c, 1] * px
-            for k in range(3):
-                vel[b, k] -= w * (px if k == 0 else py if k == 1 else pz)
-                ang[b, k] -= inv_i[b, k, 0] * cx + inv_i[b, k, 1] * cy + inv_i[b, k, 2] * cz
+@njit(cache=True, inline="always")
+def _kick(inv_mass, inv_i, i, rx, ry, rz, px, py, pz, tx, ty, tz):
+    """What a linear impulse P at arm r plus an angular impulse τ do to body i: (Δv, Δω)."""
+    w = inv_mass[i]
+    lx = ry * pz - rz * py + tx
+    ly = rz * px - rx * pz + ty
+    lz = rx * py - ry * px + tz
+    m = inv_i[i]
+    return (w * px, w * py, w * pz, m[0, 0] * lx + m[0, 1] * ly + m[0, 2] * lz,
+            m[1, 0] * lx + m[1, 1] * ly + m[1, 2] * lz, m[2, 0] * lx + m[2, 1] * ly + m[2, 2] * lz)
+
+
+@njit(cache=True, inline="always")
+def _relative_velocity(vel, ang, a, b, rax, ray, raz, rbx, rby, rbz):
+    """Velocity of the point on a minus that on b (scenery, b < 0, is still)."""
+    vx, vy, vz = _point_velocity(vel, ang, a, rax, ray, raz)
+    if b >= 0:
+        ux, uy, uz = _point_velocity(vel, ang, b, rbx, rby, rbz)
+        return vx - ux, vy - uy, vz - uz
+    return vx, vy, vz
 
 
 @njit(cache=True, nogil=True)
-def solve_velocities(ca, cb, n, ra, rb, t1, t2, mu, mass_n, mass_t1, mass_t2, target,
-                     inv_mass, inv_i, vel, ang, impulse, jt1, jt2, tolerance, max_passes):
-    """Gauss–Seidel passes (module docstring, stage 3) until no point's velocity changes by
-    more than ``tolerance`` [m/s] in a pass, at most ``max_passes``. Returns the passes run."""
+def warm_start(start, ca, cb, n, ra, rb, fa, fb, t1, t2, inv_mass, inv_i, vel, ang, impulse,
+               jt1, jt2, jtw):
+    """Apply each point's remembered normal ``impulse`` and each manifold's remembered friction
+    (``jt1``, ``jt2``) and twist ``jtw`` impulses."""
+    for k in range(t1.shape[0]):
+        s0 = start[k]
+        a = ca[s0]
+        b = cb[s0]
+        for c in range(s0 - 1, start[k + 1]):
+            if c < s0:  # the manifold's friction block at its centre, and its twist
+                rax, ray, raz = fa[k, 0], fa[k, 1], fa[k, 2]
+                rbx, rby, rbz = fb[k, 0], fb[k, 1], fb[k, 2]
+                px = jt1[k] * t1[k, 0] + jt2[k] * t2[k, 0]
+                py = jt1[k] * t1[k, 1] + jt2[k] * t2[k, 1]
+                pz = jt1[k] * t1[k, 2] + jt2[k] * t2[k, 2]
+                tx, ty, tz = jtw[k] * n[s0, 0], jtw[k] * n[s0, 1], jtw[k] * n[s0, 2]
+            else:
+                rax, ray, raz = ra[c, 0], ra[c, 1], ra[c, 2]
+                rbx, rby, rbz = rb[c, 0], rb[c, 1], rb[c, 2]
+                px, py, pz = impulse[c] * n[c, 0], impulse[c] * n[c, 1], impulse[c] * n[c, 2]
+                tx = ty = tz = 0.0
+            dvx, dvy, dvz, dwx, dwy, dwz = _kick(inv_mass, inv_i, a, rax, ray, raz, px, py, pz,
+                                                 tx, ty, tz)
+            vel[a, 0] += dvx
+            vel[a, 1] += dvy
+            vel[a, 2] += dvz
+            ang[a, 0] += dwx
+            ang[a, 1] += dwy
+            ang[a, 2] += dwz
+            if b >= 0:
+                dvx, dvy, dvz, dwx, dwy, dwz = _kick(inv_mass, inv_i, b, rbx, rby, rbz, px, py,
+                                                     pz, tx, ty, tz)
+                vel[b, 0] -= dvx
+                vel[b, 1] -= dvy
+                vel[b, 2] -= dvz
+                ang[b, 0] -= dwx
+                ang[b, 1] -= dwy
+                ang[b, 2] -= dwz
+
+
+@njit(cache=True, nogil=True)
+def solve_velocities(start, ca, cb, n, ra, rb, fa, fb, t1, t2, mu, radius, mass_n, mass_t1,
+                     mass_t2, mass_tw, target, inv_mass, inv_i, vel, ang, impulse, jt1, jt2,
+                     jtw, tolerance, max_passes):
+    """Gauss–Seidel passes (module docstring, stage 3) until no row's velocity changes by
+    more than ``tolerance`` [m/s] in a pass (the twist's angular change counts times ρ), at
+    most ``max_passes``. Per manifold k (rows ``start[k]`` to ``start[k + 1]``), each row
+    applied before the next reads the velocities: the twist (skipped for one point), the
+    two tangents at the centre (clamped together), both skipped when μ = 0, then each point's
+    normal. Returns the passes run."""
     passes = 0
     while passes < max_passes:
         passes += 1
         largest = 0.0
-        for c in range(ca.shape[0]):
-            if mass_n[c] == 0.0:
-                continue
-            a = ca[c]
-            b = cb[c]
-            rax, ray, raz = ra[c, 0], ra[c, 1], ra[c, 2]
-            rbx, rby, rbz = rb[c, 0], rb[c, 1], rb[c, 2]
-            # phase 0: friction on both tangents (skipped when μ = 0); phase 1: the normal
-            for phase in range(2):
-                if phase == 0 and mu[c] <= 0.0:
-                    continue
-                vx, vy, vz = _point_velocity(vel, ang, a, rax, ray, raz)
-                if b >= 0:
-                    ux, uy, uz = _point_velocity(vel, ang, b, rbx, rby, rbz)
-                    vx -= ux
-                    vy -= uy
-                    vz -= uz
-                if phase == 0:
-                    new1 = jt1[c] - (vx * t1[c, 0] + vy * t1[c, 1] + vz * t1[c, 2]) * mass_t1[c]
-                    new2 = jt2[c] - (vx * t2[c, 0] + vy * t2[c, 1] + vz * t2[c, 2]) * mass_t2[c]
-                    limit = mu[c] * impulse[c]
+        for k in range(t1.shape[0]):
+            s0 = start[k]
+            a = ca[s0]
+            b = cb[s0]
+            nx, ny, nz = n[s0, 0], n[s0, 1], n[s0, 2]
+            total = 0.0
+            for c in range(s0, start[k + 1]):
+                total += impulse[c]
+            for c in range(s0 - 2 if mu[k] > 0.0 else s0, start[k + 1]):
+                if c == s0 - 2:  # twist about the normal, within ±μ·ρ·Λ
+                    if mass_tw[k] == 0.0 or radius[k] == 0.0:
+                        continue
+                    spin = ang[a, 0] * nx + ang[a, 1] * ny + ang[a, 2] * nz
+                    if b >= 0:
+                        spin -= ang[b, 0] * nx + ang[b, 1] * ny + ang[b, 2] * nz
+                    limit = mu[k] * total * radius[k]
+                    new = min(max(jtw[k] - spin * mass_tw[k], -limit), limit)
+                    d = new - jtw[k]
+                    jtw[k] = new
+                    change = abs(d) / mass_tw[k] * radius[k]
+                    rax = ray = raz = rbx = rby = rbz = 0.0
+                    px = py = pz = 0.0
+                    tx, ty, tz = d * nx, d * ny, d * nz
+                elif c == s0 - 1:  # tangents at the centre, within Coulomb's disc μ·Λ
+                    rax, ray, raz = fa[k, 0], fa[k, 1], fa[k, 2]
+                    rbx, rby, rbz = fb[k, 0], fb[k, 1], fb[k, 2]
+                    vx, vy, vz = _relative_velocity(vel, ang, a, b, rax, ray, raz, rbx, rby, rbz)
+                    new1 = jt1[k] - (vx * t1[k, 0] + vy * t1[k, 1] + vz * t1[k, 2]) * mass_t1[k]
+                    new2 = jt2[k] - (vx * t2[k, 0] + vy * t2[k, 1] + vz * t2[k, 2]) * mass_t2[k]
+                    limit = mu[k] * total
                     size = math.sqrt(new1 * new1 + new2 * new2)
-                    if size > limit:  # sliding: Coulomb's disc
+                    if size > limit:
                         s = limit / size
                         new1 *= s
                         new2 *= s
-                    d1 = new1 - jt1[c]
-                    d2 = new2 - jt2[c]
-                    jt1[c] = new1
-                    jt2[c] = new2
-                    px = d1 * t1[c, 0] + d2 * t2[c, 0]
-                    py = d1 * t1[c, 1] + d2 * t2[c, 1]
-                    pz = d1 * t1[c, 2] + d2 * t2[c, 2]
-                    change = max(abs(d1) / mass_t1[c] if mass_t1[c] > 0.0 else 0.0,
-                                 abs(d2) / mass_t2[c] if mass_t2[c] > 0.0 else 0.0)
-                else:
-                    vs = vx * n[c, 0] + vy * n[c, 1] + vz * n[c, 2]
-                    total = impulse[c] + (target[c] - vs) * mass_n[c]
-                    if total < 0.0:
-                        total = 0.0  # contacts push, never pull
-                    d1 = total - impulse[c]
-                    impulse[c] = total
-                    px = d1 * n[c, 0]
-                    py = d1 * n[c, 1]
-                    pz = d1 * n[c, 2]
-                    change = abs(d1) / mass_n[c]
+                    d1 = new1 - jt1[k]
+                    d2 = new2 - jt2[k]
+                    jt1[k] = new1
+                    jt2[k] = new2
+                    change = max(abs(d1) * (1.0 / mass_t1[k] if mass_t1[k] > 0.0 else 0.0),
+                                 abs(d2) * (1.0 / mass_t2[k] if mass_t2[k] > 0.0 else 0.0))
+                    px = d1 * t1[k, 0] + d2 * t2[k, 0]
+                    py = d1 * t1[k, 1] + d2 * t2[k, 1]
+                    pz = d1 * t1[k, 2] + d2 * t2[k, 2]
+                    tx = ty = tz = 0.0
+                else:  # the normal of point c: accumulated, pushes only
+                    if mass_n[c] == 0.0:
+                        continue
+                    rax, ray, raz = ra[c, 0], ra[c, 1], ra[c, 2]
+                    rbx, rby, rbz = rb[c, 0], rb[c, 1], rb[c, 2]
+                    vx, vy, vz = _relative_velocity(vel, ang, a, b, rax, ray, raz, rbx, rby, rbz)
+                    vs = vx * nx + vy * ny + vz * nz
+                    new = max(impulse[c] + (target[c] - vs) * mass_n[c], 0.0)
+                    d = new - impulse[c]
+                    impulse[c] = new
+                    total += d
+                    change = abs(d) / mass_n[c]
+                    px, py, pz = d * nx, d * ny, d * nz
+                    tx = ty = tz = 0.0
                 if change > largest:
                     largest = change
-                if px == 0.0 and py == 0.0 and pz == 0.0:
+                if change == 0.0:
                     continue
-                w = inv_mass[a]
-                cx = ray * pz - raz * py
-                cy = raz * px - rax * pz
-                cz = rax * py - ray * px
-                vel[a, 0] += w * px
-                vel[a, 1] += w * py
-                vel[a, 2] += w * pz
-                for k in range(3):
-                    ang[a, k] += inv_i[a, k, 0] * cx + inv_i[a, k, 1] * cy + inv_i[a, k, 2] * cz
+                dvx, dvy, dvz, dwx, dwy, dwz = _kick(inv_mass, inv_i, a, rax, ray, raz, px, py,
+                                                     pz, tx, ty, tz)
+                vel[a, 0] += dvx
+                vel[a, 1] += dvy
+                vel[a, 2] += dvz
+                ang[a, 0] += dwx
+                ang[a, 1] += dwy
+                ang[a, 2] += dwz
                 if b >= 0:
-                    w = inv_mass[b]
-                    cx = rby * pz - rbz * py
-                    cy = rbz * px - rbx * pz
-                    cz = rbx * py - rby * px
-                    vel[b, 0] -= w * px
-                    vel[b, 1] -= w * py
-                    vel[b, 2] -= w * pz
-                    for k in range(3):
-                        ang[b, k] -= (inv_i[b, k, 0] * cx + inv_i[b, k, 1] * cy
-                                      + inv_i[b, k, 2] * cz)
+                    dvx, dvy, dvz, dwx, dwy, dwz = _kick(inv_mass, inv_i, b, rbx, rby, rbz, px,
+                                                         py, pz, tx, ty, tz)
+                    vel[b, 0] -= dvx
+                    vel[b, 1] -= dvy
+                    vel[b, 2] -= dvz
+                    ang[b, 0] -= dwx
+                    ang[b, 1] -= dwy
+                    ang[b, 2] -= dwz
         if largest <= tolerance:
             break
     return passes

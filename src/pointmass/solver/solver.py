@@ -149,19 +149,20 @@ class Solver:
         return stats
 
     def solve_bodies(self, bodies, contacts, acceleration: np.ndarray, history: ImpulseHistory,
-                     dt: float) -> body_solver.BodyRows:
+                     dt: float, joints=None) -> body_solver.BodyRows:
         """The body stage's velocity half (prepare, warm start, solve velocities) for rigid-body
         contact points; the caller drifts the bodies, then calls ``project_bodies``. Runs after
-        the particle stages of the same substep (``body_solver.py``)."""
+        the particle stages of the same substep (``body_solver.py``). ``joints`` (a
+        ``rigid.joint_set.Joints``) are solved in the same passes."""
         passes = body_solver.MAX_VELOCITY_PASSES if self.max_passes is None \
             else max(int(self.max_passes), 1)
         return body_solver.solve_velocities(bodies, contacts, acceleration, history, float(dt),
-                                            float(self.restitution_threshold), passes)
+                                            float(self.restitution_threshold), passes, joints)
 
     def project_bodies(self, bodies, rows: body_solver.BodyRows,
-                       history: ImpulseHistory) -> None:
+                       history: ImpulseHistory, joints=None) -> None:
         """The body stage's position half: projection, world inertia, impulses kept."""
-        body_solver.project_positions(bodies, rows, history)
+        body_solver.project_positions(bodies, rows, history, joints)
 
     def _sequential(self, p, bod, con, contacts, history, dt) -> SolveStats:
         threshold = float(self.restitution_threshold)

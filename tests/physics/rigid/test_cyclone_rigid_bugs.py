@@ -1,6 +1,6 @@
 """Regression tests for Cyclone's rigid-body bugs (rigid-notes.md §1.8, R1–R11), one or more
 each, for those the rigid half covers so far. Not yet covered here: R3 aero and R4 springs
-(rigid force generators), R11 joints. R6 (sleeping) has more in test_sleep.py.
+(rigid force generators). R6 (sleeping) has more in test_sleep.py, joints in test_joints.py.
 """
 
 import math
@@ -135,3 +135,31 @@ def test_r10_a_fast_small_body_does_not_tunnel_through_a_thin_wall():
         world.step(DT)
     assert ball.position[0] == pytest.approx(-0.1, abs=1e-6)
     assert abs(ball.velocity[0]) < 1e-9
+
+
+def test_r11_a_joint_is_two_sided_and_not_slack():
+    """R11: Cyclone's joint is a contact with friction 1 that acts only once its two points are
+    0.15 m apart, and only pulls. Here a box hung by its top point hangs with that point on the
+    anchor (no slack: < 1 mm, not 0.15 m), and a box standing on its bottom point, pushed down
+    onto the anchor by gravity and by a shove, keeps its point there as it topples: the joint
+    pushes too (its centre never comes closer to the anchor than d − 1 mm)."""
+    from pointmass.rigid.joints import BallJoint
+
+    world = pm.World(gravity=(0.0, -10.0, 0.0))
+    hung = world.add_body(Box((0.1, 0.25, 0.1)), (0.0, 1.75, 0.0), mass=1.0)
+    pulled = world.add(BallJoint(hung, (0.0, 0.25, 0.0)))  # the anchor at (0, 2, 0)
+    d = 0.25
+    standing = world.add_body(Box((0.1, d, 0.1)), (3.0, d, 0.0), (0.9999, 0.0, 0.0, 0.0141),
+                              mass=1.0, velocity=(0.0, -2.0, 0.0))
+    pushed = world.add(BallJoint(standing, (0.0, -d, 0.0)))
+    anchor = pushed.anchors()[1]
+    closest, gap = [], []
+    for _ in range(120):
+        world.step(DT)
+        closest.append(float(np.linalg.norm(standing.position - anchor)))
+        gap.append(max(pulled.separation(), pushed.separation()))
+    assert max(gap[:30]) < 1e-3  # the shove onto the anchor, and the start of the fall
+    assert min(closest[:30]) > d - 1e-3
+    # toppling all the way round at up to 11 rad/s, the step's drift opens it by ~5 mm
+    assert max(gap) < 0.01 and min(closest) > d - 0.01
+    assert standing.position[1] < 0.0  # it did topple, about its pinned point

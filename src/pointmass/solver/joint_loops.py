@@ -1,0 +1,96 @@
+"""The joints that close a loop of the tree solve (``joint_tree.LOOP``: a ring's last joint, a
+rope bridge's second anchor), solved through the tree: each one's impulse λ is found with
+the effective mass the whole tree shows it, S = J_l·H⁻¹·J_lᵀ (three solves with the tree's
+factors, ``joint_direct.substitute``), and applied as a load on the tree's bodies that the
+tree's joints take up (H·y = (J_lᵀλ, 0)). With one loop the pass is exact; several are swept
+one after another, each exact given the others.
+
+Why. Swept against the tree with only its own bodies' mass (Gauss–Seidel), the second anchor
+of a 50-plank rope bridge never converged in 30 passes: its gap stayed at 4.4 mm after 10 s
+and the bridge never came to rest.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+from numba import njit
+
+from .joint_direct import _coupling, _invert, apply, rate, substitute
+
+
+@njit(cache=True, nogil=True)
+def _load(z, where, ja, jb, ra, rb, j, lx, ly, lz):
+    """z ← (J_jᵀ·λ on each of joint j's tree bodies, 0 elsewhere)."""
+    z[:] = 0.0
+    block = np.empty((3, 6))
+    for side in range(2):
+        body = ja[j] if side == 0 else jb[j]
+        if body < 0 or where[body] < 0:
+            continue
+        _coupling(ja, ra, rb, j, body, block)
+        p = where[body]
+        for v in range(6):
+            z[p, v] += block[0, v] * lx + block[1, v] * ly + block[2, v] * lz
+
+
+@njit(cache=True, nogil=True)
+def _response(where, ja, jb, ra, rb, j, y):
+    """J_j·Δv for the tree's solution y (the change of joint j's Ċ)."""
+    out = np.zeros(3)
+    block = np.empty((3, 6))
+    for side in range(2):
+        body = ja[j] if side == 0 else jb[j]
+        if body < 0 or where[body] < 0:
+            continue
+        _coupling(ja, ra, rb, j, body, block)
+        p = where[body]
+        for u in range(3):
+            for v in range(6):
+                out[u] += block[u, v] * y[p, v]
+    return out
+
+
+@njit(cache=True, nogil=True)
+def masses(loops, nodes, parent, count, n, where, ja, jb, ra, rb, dinv, low, sinv):
+    """Each loop joint's S⁻¹ (L, 3, 3) [kg]; False if one is singular (a redundant joint)."""
+    z = np.zeros((count, 6))
+    y = np.zeros((count, 6))
+    s = np.zeros((3, 3))
+    for k in range(loops.shape[0]):
+        j = loops[k]
+        for c in range(3):
+            _load(z, where, ja, jb, ra, rb, j, 1.0 if c == 0 else 0.0, 1.0 if c == 1 else 0.0,
+                  1.0 if c == 2 else 0.0)
+            substitute(nodes, parent, count, n, dinv, low, z, y)
+            column = _response(where, ja, jb, ra, rb, j, y)
+            for u in range(3):
+                s[u, c] = column[u]
+        if not _invert(s, 3, sinv[k]):
+            return False
+    return True
+
+
+@njit(cache=True, nogil=True)
+def solve(loops, nodes, parent, count, n, where, ja, jb, ra, rb, bias, dinv, low, sinv, vel,
+          ang, point):
+    """One pass over the loop joints (module docstring); returns the largest |target − Ċ| met
+    [m/s]."""
+    z = np.zeros((count, 6))
+    y = np.zeros((count, 6))
+    largest = 0.0
+    for k in range(loops.shape[0]):
+        j = loops[k]
+        cx, cy, cz = rate(ja, jb, ra, rb, vel, ang, j)
+        ex, ey, ez = bias[j, 0] - cx, bias[j, 1] - cy, bias[j, 2] - cz
+        largest = max(largest, np.sqrt(ex * ex + ey * ey + ez * ez))
+        m = sinv[k]
+        lx = m[0, 0] * ex + m[0, 1] * ey + m[0, 2] * ez
+        ly = m[1, 0] * ex + m[1, 1] * ey + m[1, 2] * ez
+        lz = m[2, 0] * ex + m[2, 1] * ey + m[2, 2] * ez
+        _load(z, where, ja, jb, ra, rb, j, lx, ly, lz)
+        substitute(nodes, parent, count, n, dinv, low, z, y)
+        apply(nodes, count, n, y, vel, ang, point)
+        point[j, 0] += lx
+        point[j, 1] += ly
+        point[j, 2] += lz
+    return largest
