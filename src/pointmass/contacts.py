@@ -76,9 +76,10 @@ class ContactBuffer:
     def clear(self) -> None:
         # Zero the friction of the old rows: a compiled generator that writes through ``raw()``
         # and knows nothing of friction then leaves frictionless contacts, not stale ones.
-        self._friction[: self.count] = 0.0
-        self._bilateral[: self.count] = False
-        self.count = 0
+        if self.count:  # (no slicing for an empty buffer: a tiny world's step clears one)
+            self._friction[: self.count] = 0.0
+            self._bilateral[: self.count] = False
+            self.count = 0
 
     def __len__(self) -> int:
         return self.count

@@ -11,16 +11,16 @@ from __future__ import annotations
 
 from numba import njit, prange
 
-from .sweeps import projection_rows, velocity_rows
+from .sweeps import has_friction, projection_rows, velocity_rows
 
 
 @njit(cache=True, nogil=True, parallel=True)
-def _velocity_phase(bod, con, order, spans, first, last, dt):
+def _velocity_phase(bod, con, order, spans, first, last, dt, friction):
     """The groups first..last-1 of one phase in parallel, each group's rows in order."""
     largest = 0.0
     used = 0
     for g in prange(first, last):
-        change, hits = velocity_rows(bod, con, order, spans[g, 0], spans[g, 1], dt)
+        change, hits = velocity_rows(bod, con, order, spans[g, 0], spans[g, 1], dt, friction)
         largest = max(largest, change)
         used += hits
     return largest, used
@@ -41,6 +41,7 @@ def solve_velocities(bod, con, order, spans, phases, dt, tolerance, max_passes):
     in parallel, a phase of one group serially. Returns (passes, resolutions)."""
     passes = 0
     used = 0
+    friction = has_friction(con)
     while passes < max_passes:
         passes += 1
         largest = 0.0
@@ -48,9 +49,10 @@ def solve_velocities(bod, con, order, spans, phases, dt, tolerance, max_passes):
             first, last = phases[p], phases[p + 1]
             if last - first == 1:
                 change, hits = velocity_rows(bod, con, order, spans[first, 0],
-                                                    spans[first, 1], dt)
+                                             spans[first, 1], dt, friction)
             elif last > first:
-                change, hits = _velocity_phase(bod, con, order, spans, first, last, dt)
+                change, hits = _velocity_phase(bod, con, order, spans, first, last, dt,
+                                               friction)
             else:
                 continue
             largest = max(largest, change)

@@ -8,6 +8,7 @@ Each stage is a plain loop over the contacts, compiled with numba. It takes the 
 
 from __future__ import annotations
 
+import numpy as np
 from numba import njit
 
 from .kernels import (
@@ -22,7 +23,7 @@ from .kernels import (
     relative,
     slide,
 )
-from .sweeps import projection_rows, velocity_rows
+from .sweeps import has_friction, projection_rows, velocity_rows
 
 
 @njit(cache=True, nogil=True)
@@ -73,10 +74,16 @@ def impacts(bod, con, dt, threshold, tolerance, max_passes):
     is always left with do not bounce it back to life (measured: a frictional pile kept
     creeping at 2 cm/s, and came to exact rest once its pressed contacts no longer bounced).
 
+    After the first pass, a contact neither of whose particles was hit in this pass or the last
+    is not looked at again: nothing it would see has changed since it was last found not to
+    close, so the answer is the one a full pass gives (a settled 10 000-sphere pit runs ~3
+    passes a step, a few hundred hits among 35 000 rows).
+
     Returns (passes, resolutions)."""
     ca, cb, n, depth0, e, mu = con.a, con.b, con.n, con.depth0, con.e, con.mu
     wa, wb, k, acc_sep, pressed = con.wa, con.wb, con.k, con.acc_sep, con.impulse
     pos, vel, disp = bod.pos, bod.vel, bod.disp
+    hit_in = np.zeros(vel.shape[0], np.int64)  # the last pass that changed each particle
     passes = 0
     used = 0
     while passes < max_passes:
@@ -85,6 +92,10 @@ def impacts(bod, con, dt, threshold, tolerance, max_passes):
         for c in range(ca.shape[0]):
             if k[c] == 0.0 or pressed[c] > 0.0:
                 continue  # it carried load last step: resting, the sweep's
+            a = ca[c]
+            b = cb[c]
+            if passes > 1 and hit_in[a] < passes - 1 and (b < 0 or hit_in[b] < passes - 1):
+                continue  # unchanged since its last look
             vs = relative(vel, ca, cb, n, c)
             if not closing_within_step(vs, depth0[c], dt):
                 continue
@@ -92,14 +103,15 @@ def impacts(bod, con, dt, threshold, tolerance, max_passes):
             if vs - accel >= -tolerance:
                 continue  # resting: the sweep holds it, with its warm start
             j = (bounce_target(vs, acc_sep[c], e[c], threshold) - vs) * k[c]
-            a = ca[c]  # kernels.push written out (see solve_velocities)
-            b = cb[c]
-            for i in range(3):
+            for i in range(3):  # kernels.push written out (see solve_velocities)
                 vel[a, i] += n[c, i] * j * wa[c]
                 if b >= 0:
                     vel[b, i] -= n[c, i] * j * wb[c]
             if mu[c] > 0.0:
                 friction_once(pos, vel, disp, ca, cb, n, wa, wb, k, mu, c, j, dt)
+            hit_in[a] = passes
+            if b >= 0:
+                hit_in[b] = passes
             hits += 1
         used += hits
         if hits == 0:
@@ -139,9 +151,10 @@ def solve_velocities(bod, con, dt, tolerance, max_passes):
     Returns (passes, resolutions)."""
     passes = 0
     used = 0
+    friction = has_friction(con)
     while passes < max_passes:
         passes += 1
-        largest, hits = velocity_rows(bod, con, None, 0, con.a.shape[0], dt)
+        largest, hits = velocity_rows(bod, con, None, 0, con.a.shape[0], dt, friction)
         used += hits
         if largest <= tolerance:
             break

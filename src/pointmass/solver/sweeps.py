@@ -15,12 +15,24 @@ from numba import njit
 from .kernels import PENETRATION_EPSILON, friction_accumulated, relative
 
 
+@njit(cache=True, inline="always")
+def has_friction(con):
+    """Whether any contact of the set has μ > 0 (else ``velocity_rows`` skips friction)."""
+    mu = con.mu
+    for c in range(mu.shape[0]):
+        if mu[c] > 0.0:
+            return True
+    return False
+
+
 @njit(cache=True, nogil=True)
-def velocity_rows(bod, con, rows, lo, hi, dt):
+def velocity_rows(bod, con, rows, lo, hi, dt, friction):
     """Sequential impulses (Catto; box2d-lite's ``Arbiter::ApplyImpulse``) on rows[lo:hi]:
     each keeps an accumulated impulse clamped at ≥ 0 (contacts push, never pull, and a warm
     start that was too strong is taken back; a bilateral rod is not clamped), aiming at the
-    separating velocity ``target``; friction right after each normal impulse.
+    separating velocity ``target``; friction right after each normal impulse, where
+    ``friction`` (``has_friction``: a frictionless set reads no μ; measured on the settled
+    10 000-sphere pit, 0.75 against 0.67 ms a pass).
 
     Returns (the largest velocity change of a row [m/s], the rows whose impulse changed)."""
     ca, cb, n, mu, wa, wb, k = con.a, con.b, con.n, con.mu, con.wa, con.wb, con.k
@@ -48,7 +60,7 @@ def velocity_rows(bod, con, rows, lo, hi, dt):
                         vel[b, i] -= n[c, i] * step * wb[c]
                 change = abs(step) / k[c]
                 used += 1
-            if mu[c] > 0.0:
+            if friction and mu[c] > 0.0:
                 change = max(change, friction_accumulated(pos, vel, disp, ca, cb, n, wa, wb, k,
                                                           mu, impulse, tangent, c, dt))
         largest = max(largest, change)
