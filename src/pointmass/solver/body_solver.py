@@ -16,6 +16,7 @@ import numpy as np
 from ..rigid.contacts import BodyContacts
 from . import body_direct, joint_solver
 from . import body_manifolds as bm
+from . import body_passes as bp
 from . import body_stages as st
 from .history import ImpulseHistory
 
@@ -34,7 +35,8 @@ class BodyRows:
     manifold (K,; ``body_manifolds``), rows ``start[k]`` to ``start[k + 1]``: tangents ``t1``,
     ``t2`` (K, 3), arms ``fa``, ``fb`` (K, 3) to the friction centre, μ ``mu``, twist radius
     ``radius`` [m], effective masses ``mass_t1``, ``mass_t2``, ``mass_tw`` and the friction
-    and twist impulses ``jt1``, ``jt2``, ``jtw`` [N·s, N·m·s]."""
+    and twist impulses ``jt1``, ``jt2``, ``jtw`` [N·s, N·m·s]. The rows' angular terms
+    (``body_passes``): ``arm`` (M, 12) per point, ``farm`` (K, 30) per manifold."""
 
     contacts: BodyContacts
     start: np.ndarray
@@ -55,6 +57,8 @@ class BodyRows:
     jt1: np.ndarray
     jt2: np.ndarray
     jtw: np.ndarray
+    arm: np.ndarray
+    farm: np.ndarray
     velocity_passes: int = 0
     position_passes: int = 0
     deepest: float = 0.0
@@ -68,7 +72,8 @@ class BodyRows:
         k = bm.find_manifolds(contacts.a, contacts.b, contacts.normal, start) if m else 0
         return cls(contacts, start[:k + 1], np.empty(m), np.empty(m), np.empty((m, 3)),
                    np.empty((m, 3)), np.zeros(m), *(np.empty((k, 3)) for _ in range(4)),
-                   *(np.empty(k) for _ in range(5)), *(np.zeros(k) for _ in range(3)))
+                   *(np.empty(k) for _ in range(5)), *(np.zeros(k) for _ in range(3)),
+                   np.empty((m, 12)), np.empty((k, 30)))
 
 
 def solve_velocities(bodies, contacts: BodyContacts, acceleration: np.ndarray,
@@ -95,6 +100,8 @@ def solve_velocities(bodies, contacts: BodyContacts, acceleration: np.ndarray,
     bm.prepare_friction(r.start, c.a, c.b, c.normal, c.r_a, c.r_b, c.friction, b.inv_mass,
                         b.inv_inertia_world, r.t1, r.t2, r.fa, r.fb, r.mass_t1,
                         r.mass_t2, r.mass_tw, r.radius, r.mu)
+    bp.prepare_arms(r.start, c.a, c.b, c.normal, c.r_a, c.r_b, r.fa, r.fb, r.t1, r.t2,
+                    b.inv_inertia_world, r.arm, r.farm)
     kept = np.empty((c.count, 3))
     history.recall(c.key, r.impulse, kept)
     bm.gather_friction(r.start, c.normal, r.t1, r.t2, r.mu, r.radius, r.mass_tw, kept, r.jt1,
@@ -144,11 +151,10 @@ def _interleaved(b, c, rows: BodyRows, joints, max_passes: int) -> int:
 
 
 def _passes(b, c, r: BodyRows, passes: int) -> int:
-    return int(st.solve_velocities(
-        r.start, c.a, c.b, c.normal, c.r_a, c.r_b, r.fa, r.fb, r.t1, r.t2, r.mu, r.radius,
-        r.mass_n, r.mass_t1, r.mass_t2, r.mass_tw, r.target, b.inv_mass, b.inv_inertia_world,
-        b.velocity, b.angular_velocity, r.impulse, r.jt1, r.jt2, r.jtw, VELOCITY_TOLERANCE,
-        passes))
+    return int(bp.solve_velocities(
+        r.start, c.a, c.b, c.normal, r.t1, r.t2, r.mu, r.radius, r.mass_n, r.mass_t1,
+        r.mass_t2, r.mass_tw, r.target, b.inv_mass, b.velocity, b.angular_velocity, r.impulse,
+        r.jt1, r.jt2, r.jtw, r.arm, r.farm, VELOCITY_TOLERANCE, passes))
 
 
 def _project_with_joints(b, rows: BodyRows, joints) -> None:

@@ -12,8 +12,8 @@ The stages, in the order a substep runs them:
    (``body_manifolds.prepare_friction``).
 2. ``warm_start`` — each point begins from the normal impulse its key needed last step, each
    manifold from the friction and twist its points kept (Catto 2006).
-3. ``solve_velocities`` — sequential impulses, manifold by manifold: a twist about the
-   normal (within ±μ·ρ·Λ, Λ the manifold's normal impulse), friction once at the friction
+3. ``body_passes.solve_velocities`` — sequential impulses, manifold by manifold: a twist
+   about the normal (within ±μ·ρ·Λ, Λ the manifold's normal impulse), friction once at the friction
    centre on two tangents (clamped together to the disc μ·Λ; ``body_manifolds``), then each
    point's normal impulse (accumulated, clamped ≥ 0), each applied to v and ω of both bodies
    before the next row reads them.
@@ -182,105 +182,6 @@ def warm_start(start, ca, cb, n, ra, rb, fa, fb, t1, t2, inv_mass, inv_i, vel, a
                 ang[b, 0] -= dwx
                 ang[b, 1] -= dwy
                 ang[b, 2] -= dwz
-
-
-@njit(cache=True, nogil=True)
-def solve_velocities(start, ca, cb, n, ra, rb, fa, fb, t1, t2, mu, radius, mass_n, mass_t1,
-                     mass_t2, mass_tw, target, inv_mass, inv_i, vel, ang, impulse, jt1, jt2,
-                     jtw, tolerance, max_passes):
-    """Gauss–Seidel passes (module docstring, stage 3) until no row's velocity changes by
-    more than ``tolerance`` [m/s] in a pass (the twist's angular change counts times ρ), at
-    most ``max_passes``. Per manifold k (rows ``start[k]`` to ``start[k + 1]``), each row
-    applied before the next reads the velocities: the twist (skipped for one point), the
-    two tangents at the centre (clamped together), both skipped when μ = 0, then each point's
-    normal. Returns the passes run."""
-    passes = 0
-    while passes < max_passes:
-        passes += 1
-        largest = 0.0
-        for k in range(t1.shape[0]):
-            s0 = start[k]
-            a = ca[s0]
-            b = cb[s0]
-            nx, ny, nz = n[s0, 0], n[s0, 1], n[s0, 2]
-            total = 0.0
-            for c in range(s0, start[k + 1]):
-                total += impulse[c]
-            for c in range(s0 - 2 if mu[k] > 0.0 else s0, start[k + 1]):
-                if c == s0 - 2:  # twist about the normal, within ±μ·ρ·Λ
-                    if mass_tw[k] == 0.0 or radius[k] == 0.0:
-                        continue
-                    spin = ang[a, 0] * nx + ang[a, 1] * ny + ang[a, 2] * nz
-                    if b >= 0:
-                        spin -= ang[b, 0] * nx + ang[b, 1] * ny + ang[b, 2] * nz
-                    limit = mu[k] * total * radius[k]
-                    new = min(max(jtw[k] - spin * mass_tw[k], -limit), limit)
-                    d = new - jtw[k]
-                    jtw[k] = new
-                    change = abs(d) / mass_tw[k] * radius[k]
-                    rax = ray = raz = rbx = rby = rbz = 0.0
-                    px = py = pz = 0.0
-                    tx, ty, tz = d * nx, d * ny, d * nz
-                elif c == s0 - 1:  # tangents at the centre, within Coulomb's disc μ·Λ
-                    rax, ray, raz = fa[k, 0], fa[k, 1], fa[k, 2]
-                    rbx, rby, rbz = fb[k, 0], fb[k, 1], fb[k, 2]
-                    vx, vy, vz = _relative_velocity(vel, ang, a, b, rax, ray, raz, rbx, rby, rbz)
-                    new1 = jt1[k] - (vx * t1[k, 0] + vy * t1[k, 1] + vz * t1[k, 2]) * mass_t1[k]
-                    new2 = jt2[k] - (vx * t2[k, 0] + vy * t2[k, 1] + vz * t2[k, 2]) * mass_t2[k]
-                    limit = mu[k] * total
-                    size = math.sqrt(new1 * new1 + new2 * new2)
-                    if size > limit:
-                        s = limit / size
-                        new1 *= s
-                        new2 *= s
-                    d1 = new1 - jt1[k]
-                    d2 = new2 - jt2[k]
-                    jt1[k] = new1
-                    jt2[k] = new2
-                    change = max(abs(d1) * (1.0 / mass_t1[k] if mass_t1[k] > 0.0 else 0.0),
-                                 abs(d2) * (1.0 / mass_t2[k] if mass_t2[k] > 0.0 else 0.0))
-                    px = d1 * t1[k, 0] + d2 * t2[k, 0]
-                    py = d1 * t1[k, 1] + d2 * t2[k, 1]
-                    pz = d1 * t1[k, 2] + d2 * t2[k, 2]
-                    tx = ty = tz = 0.0
-                else:  # the normal of point c: accumulated, pushes only
-                    if mass_n[c] == 0.0:
-                        continue
-                    rax, ray, raz = ra[c, 0], ra[c, 1], ra[c, 2]
-                    rbx, rby, rbz = rb[c, 0], rb[c, 1], rb[c, 2]
-                    vx, vy, vz = _relative_velocity(vel, ang, a, b, rax, ray, raz, rbx, rby, rbz)
-                    vs = vx * nx + vy * ny + vz * nz
-                    new = max(impulse[c] + (target[c] - vs) * mass_n[c], 0.0)
-                    d = new - impulse[c]
-                    impulse[c] = new
-                    total += d
-                    change = abs(d) / mass_n[c]
-                    px, py, pz = d * nx, d * ny, d * nz
-                    tx = ty = tz = 0.0
-                if change > largest:
-                    largest = change
-                if change == 0.0:
-                    continue
-                dvx, dvy, dvz, dwx, dwy, dwz = _kick(inv_mass, inv_i, a, rax, ray, raz, px, py,
-                                                     pz, tx, ty, tz)
-                vel[a, 0] += dvx
-                vel[a, 1] += dvy
-                vel[a, 2] += dvz
-                ang[a, 0] += dwx
-                ang[a, 1] += dwy
-                ang[a, 2] += dwz
-                if b >= 0:
-                    dvx, dvy, dvz, dwx, dwy, dwz = _kick(inv_mass, inv_i, b, rbx, rby, rbz, px,
-                                                         py, pz, tx, ty, tz)
-                    vel[b, 0] -= dvx
-                    vel[b, 1] -= dvy
-                    vel[b, 2] -= dvz
-                    ang[b, 0] -= dwx
-                    ang[b, 1] -= dwy
-                    ang[b, 2] -= dwz
-        if largest <= tolerance:
-            break
-    return passes
 
 
 @njit(cache=True, inline="always")
