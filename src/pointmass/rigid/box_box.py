@@ -27,7 +27,7 @@ import numpy as np
 from numba import njit
 
 from .manifold import reduce_points
-from .narrow_box import box_axes
+from .narrow_box import box_axes_into
 
 #: Penetration the solver tolerates [m] (Box3D's 5 mm): the margin by which a face must lose
 #: before an edge pair is preferred.
@@ -37,6 +37,13 @@ EDGE_FLAG = 1 << 13
 #: Edge crosses shorter than this (nearly parallel edges) are not tested: their direction is
 #: noise, and the face axes already cover them.
 PARALLEL = 1e-6
+
+
+#: Sizes of the scratch arrays of ``box_box_into`` (floats, ints): one pair at a time reuses
+#: them, so a pair loop allocates nothing per pair (with a fresh array per temporary, the 1000-box
+#: pit's narrow phase spent most of its 0.7 µs a pair in the allocator).
+WORK_FLOATS = 128
+WORK_INTS = 48
 
 
 @njit(cache=True, nogil=True)
@@ -54,9 +61,19 @@ def _project(axes, h, n):
 @njit(cache=True, nogil=True)
 def box_box(pa, qa, ha, pb, qb, hb, margin, normal, points, depth, ids):
     """Box A (centre, orientation (w, x, y, z), half-extents) against box B."""
-    a = box_axes(qa)
-    b = box_axes(qb)
-    d = np.empty(3)
+    fw, iw = np.empty(WORK_FLOATS), np.empty(WORK_INTS, np.int64)
+    return box_box_into(pa, qa, ha, pb, qb, hb, margin, normal, points, depth, ids, fw, iw)
+
+
+@njit(cache=True, nogil=True)
+def box_box_into(pa, qa, ha, pb, qb, hb, margin, normal, points, depth, ids, fw, iw):
+    """``box_box`` with its temporaries in the scratch arrays ``fw`` (``WORK_FLOATS``,) and
+    ``iw`` (``WORK_INTS``,), which a pair loop allocates once."""
+    a = fw[0:9].reshape((3, 3))
+    b = fw[9:18].reshape((3, 3))
+    box_axes_into(qa, a)
+    box_axes_into(qb, b)
+    d = fw[18:21]
     for k in range(3):
         d[k] = pb[k] - pa[k]
     # 1. faces of A, faces of B
@@ -74,7 +91,7 @@ def box_box(pa, qa, ha, pb, qb, hb, margin, normal, points, depth, ids):
         if s > sep_b:
             best_b, sep_b = k, s
     # edge crosses
-    n = np.empty(3)
+    n = fw[21:24]
     edge_i, edge_j, sep_e = -1, -1, -math.inf
     for i in range(3):
         for j in range(3):
@@ -95,10 +112,12 @@ def box_box(pa, qa, ha, pb, qb, hb, margin, normal, points, depth, ids):
     face_sep = max(sep_a, sep_b)
     if edge_i >= 0 and sep_e > face_sep + LINEAR_SLOP:
         return _edge_contact(pa, a, ha, edge_i, pb, b, hb, edge_j, sep_e, normal, points,
-                             depth, ids)
+                             depth, ids, fw[24:])
     if sep_b > sep_a + 0.1 * LINEAR_SLOP:
-        return _face_contact(pb, b, hb, best_b, pa, a, ha, 1, margin, normal, points, depth, ids)
-    return _face_contact(pa, a, ha, best_a, pb, b, hb, 0, margin, normal, points, depth, ids)
+        return _face_contact(pb, b, hb, best_b, pa, a, ha, 1, margin, normal, points, depth, ids,
+                             fw[24:], iw)
+    return _face_contact(pa, a, ha, best_a, pb, b, hb, 0, margin, normal, points, depth, ids,
+                         fw[24:], iw)
 
 
 @njit(cache=True, nogil=True)
@@ -129,14 +148,17 @@ def _clip(poly, code, tag, count, m, off, side, out_poly, out_code, out_tag):
 
 
 @njit(cache=True, nogil=True)
-def _face_contact(pr, r, hr, face, pi, inc, hi, flip, margin, normal, points, depth, ids):
+def _face_contact(pr, r, hr, face, pi, inc, hi, flip, margin, normal, points, depth, ids, fw,
+                  iw):
     """Clip the incident box's face against the reference box's ``face`` axis. ``flip`` is 1
-    when the reference box is B."""
-    gap = np.empty(3)
+    when the reference box is B. Temporaries in ``fw`` (≥ 92,) and ``iw`` (≥ 44,)."""
+    gap = fw[0:3]
     for k in range(3):
         gap[k] = pi[k] - pr[k]
     ref_side = 1.0 if _dot(gap, r[face]) >= 0.0 else -1.0
-    nref = ref_side * r[face]  # out of the reference box, towards the incident one
+    nref = fw[3:6]  # out of the reference box, towards the incident one
+    for k in range(3):
+        nref[k] = ref_side * r[face, k]
     # incident face: the one whose outward normal is most against nref
     j, most = 0, -1.0
     for k in range(3):
@@ -145,9 +167,9 @@ def _face_contact(pr, r, hr, face, pi, inc, hi, flip, margin, normal, points, de
             j, most = k, c
     inc_side = -1.0 if _dot(nref, inc[j]) > 0.0 else 1.0
     u, v = (j + 1) % 3, (j + 2) % 3
-    poly = np.empty((8, 3))
-    code = np.empty(8, dtype=np.int64)
-    tag = np.empty(8, dtype=np.int64)
+    poly = fw[6:30].reshape((8, 3))
+    code = iw[0:8]
+    tag = iw[8:16]
     for k in range(4):
         su = 1.0 if k == 0 or k == 3 else -1.0
         sv = 1.0 if k < 2 else -1.0
@@ -157,10 +179,10 @@ def _face_contact(pr, r, hr, face, pi, inc, hi, flip, margin, normal, points, de
         code[k] = k
         tag[k] = k
     count = 4
-    other_poly = np.empty((8, 3))
-    other_code = np.empty(8, dtype=np.int64)
-    other_tag = np.empty(8, dtype=np.int64)
-    m = np.empty(3)
+    other_poly = fw[30:54].reshape((8, 3))
+    other_code = iw[16:24]
+    other_tag = iw[24:32]
+    m = fw[54:57]
     for side in range(4):
         axis = (face + 1 + side // 2) % 3
         sign = 1.0 if side % 2 == 0 else -1.0
@@ -174,9 +196,9 @@ def _face_contact(pr, r, hr, face, pi, inc, hi, flip, margin, normal, points, de
         if count == 0:
             return 0
     ref_off = _dot(nref, pr) + hr[face]
-    cand = np.empty((8, 3))
-    sep = np.empty(8)
-    cand_code = np.empty(8, dtype=np.int64)
+    cand = fw[57:81].reshape((8, 3))
+    sep = fw[81:89]
+    cand_code = iw[32:40]
     n = 0
     for k in range(count):
         s = _dot(nref, poly[k]) - ref_off
@@ -186,7 +208,7 @@ def _face_contact(pr, r, hr, face, pi, inc, hi, flip, margin, normal, points, de
             sep[n] = s
             cand_code[n] = code[k]
             n += 1
-    keep = np.empty(4, dtype=np.int64)
+    keep = iw[40:44]
     kept = reduce_points(cand, sep, n, nref, keep)
     out_sign = 1.0 if flip else -1.0  # the normal runs from B to A
     for c in range(3):
@@ -203,9 +225,10 @@ def _face_contact(pr, r, hr, face, pi, inc, hi, flip, margin, normal, points, de
 
 
 @njit(cache=True, nogil=True)
-def _edge_contact(pa, a, ha, i, pb, b, hb, j, sep, normal, points, depth, ids):
-    """One point between edge i of A and edge j of B, the pair whose cross separates most."""
-    n = np.empty(3)
+def _edge_contact(pa, a, ha, i, pb, b, hb, j, sep, normal, points, depth, ids, fw):
+    """One point between edge i of A and edge j of B, the pair whose cross separates most.
+    Temporaries in ``fw`` (≥ 12,)."""
+    n = fw[0:3]
     n[0] = a[i, 1] * b[j, 2] - a[i, 2] * b[j, 1]
     n[1] = a[i, 2] * b[j, 0] - a[i, 0] * b[j, 2]
     n[2] = a[i, 0] * b[j, 1] - a[i, 1] * b[j, 0]
@@ -215,23 +238,30 @@ def _edge_contact(pa, a, ha, i, pb, b, hb, j, sep, normal, points, depth, ids):
     for k in range(3):
         n[k] /= length  # from A towards B
     # the edges: A's edge along axis i farthest towards B, B's along j farthest towards A
-    ca = pa.copy()
-    cb = pb.copy()
+    ca = fw[3:6]
+    cb = fw[6:9]
+    for k in range(3):
+        ca[k] = pa[k]
+        cb[k] = pb[k]
     id_a, id_b = 4 * i, 4 * j
     bit_a, bit_b = 0, 0
     for k in range(3):
         if k != i:
             s = 1.0 if _dot(n, a[k]) >= 0.0 else -1.0
-            ca += s * ha[k] * a[k]
+            for u in range(3):
+                ca[u] += s * ha[k] * a[k, u]
             id_a |= (1 if s > 0 else 0) << bit_a
             bit_a += 1
         if k != j:
             s = -1.0 if _dot(n, b[k]) >= 0.0 else 1.0
-            cb += s * hb[k] * b[k]
+            for u in range(3):
+                cb[u] += s * hb[k] * b[k, u]
             id_b |= (1 if s > 0 else 0) << bit_b
             bit_b += 1
     # closest points of the lines ca + s·a_i and cb + t·b_j, clamped to the edges
-    rx = ca - cb
+    rx = fw[9:12]
+    for k in range(3):
+        rx[k] = ca[k] - cb[k]
     c = _dot(a[i], b[j])
     ar, br = _dot(a[i], rx), _dot(b[j], rx)
     denom = 1.0 - c * c

@@ -18,7 +18,7 @@ import numpy as np
 from numba import njit
 
 from ..keys import BODY_KEY_LIMIT, body_pair_key, body_plane_key
-from .box_box import box_box
+from .box_box import WORK_FLOATS, WORK_INTS, box_box_into
 from .broadphase import find_pairs
 from .contacts import BodyContacts
 from .manifold import MAX_POINTS
@@ -68,6 +68,8 @@ def pair_contacts(pos, quat, shape, size, friction, restitution, first, second, 
     points = np.zeros((MAX_POINTS, 3))
     depth = np.zeros(MAX_POINTS)
     ids = np.zeros(MAX_POINTS, np.int64)
+    fw = np.empty(WORK_FLOATS)
+    iw = np.empty(WORK_INTS, np.int64)
     count = 0
     for p in range(first.shape[0]):
         i = first[p]
@@ -89,8 +91,8 @@ def pair_contacts(pos, quat, shape, size, friction, restitution, first, second, 
                              depth, ids)
         elif si == BOX and sj == BOX:
             a, b = i, j
-            got = box_box(pos[a], quat[a], size[a], pos[b], quat[b], size[b], m, normal, points,
-                          depth, ids)
+            got = box_box_into(pos[a], quat[a], size[a], pos[b], quat[b], size[b], m, normal,
+                               points, depth, ids, fw, iw)
         else:
             continue
         if got == 0:

@@ -17,13 +17,19 @@ from .scalar import qrot
 def box_axes(q):
     """World directions of the body axes of orientation q, as a (3, 3) array of rows."""
     axes = np.empty((3, 3))
+    box_axes_into(q, axes)
+    return axes
+
+
+@njit(cache=True, nogil=True)
+def box_axes_into(q, axes):
+    """``box_axes`` written into ``axes`` (3, 3)."""
     for k in range(3):
         e0 = 1.0 if k == 0 else 0.0
         e1 = 1.0 if k == 1 else 0.0
         e2 = 1.0 if k == 2 else 0.0
         x, y, z = qrot(q[0], q[1], q[2], q[3], e0, e1, e2)
         axes[k, 0], axes[k, 1], axes[k, 2] = x, y, z
-    return axes
 
 
 @njit(cache=True, nogil=True)
