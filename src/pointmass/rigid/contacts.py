@@ -34,17 +34,19 @@ class BodyContacts:
         self.resize(capacity)
 
     def resize(self, capacity: int) -> None:
-        """Room for ``capacity`` rows; the contents are dropped (``count`` = 0)."""
+        """Room for ``capacity`` rows; the contents are dropped (``count`` = 0) and the rows
+        are not cleared: a writer fills rows from 0 and ``trim`` keeps those (the room is an
+        upper bound, ~30 000 rows for the 1000-box pit, and clearing it was 3 % of its step)."""
         self.count = 0
-        self.a = np.zeros(capacity, np.int64)
-        self.b = np.full(capacity, -1, np.int64)
-        self.normal = np.zeros((capacity, 3))
-        self.r_a = np.zeros((capacity, 3))
-        self.r_b = np.zeros((capacity, 3))
-        self.depth = np.zeros(capacity)
-        self.friction = np.zeros(capacity)
-        self.restitution = np.zeros(capacity)
-        self.key = np.full(capacity, -1, np.int64)
+        self.a = np.empty(capacity, np.int64)
+        self.b = np.empty(capacity, np.int64)
+        self.normal = np.empty((capacity, 3))
+        self.r_a = np.empty((capacity, 3))
+        self.r_b = np.empty((capacity, 3))
+        self.depth = np.empty(capacity)
+        self.friction = np.empty(capacity)
+        self.restitution = np.empty(capacity)
+        self.key = np.empty(capacity, np.int64)
 
     def trim(self, count: int) -> None:
         """Keep the first ``count`` rows as views (after a kernel wrote them)."""
