@@ -503,3 +503,13 @@ def _kinetic_energy(vel, ang, quat, inv_mass, inv_inertia):
                                   ang[i, 0], ang[i, 1], ang[i, 2])
             total += 0.5 * (wx * wx / ix + wy * wy / iy + wz * wz / iz)
     return total
+
+
+def body_index(body, name: str) -> int:
+    """A body index from a ``Body`` handle or an int >= 0 (checked against a world when the
+    generator or joint is added), or a TypeError naming ``name``."""
+    if isinstance(body, Body):
+        return body.index
+    if isinstance(body, bool) or not isinstance(body, (int, np.integer)) or body < 0:
+        raise TypeError(f"{name} must be a Body or a body index (int >= 0), got {body!r}")
+    return int(body)

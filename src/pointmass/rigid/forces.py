@@ -31,7 +31,7 @@ import numpy as np
 from numba import njit
 
 from .. import _validate as check
-from .bodies import Bodies, Body
+from .bodies import Bodies, Body, body_index
 from .scalar import qrot, qrot_inv
 from .shapes import BOX, SPHERE
 
@@ -49,14 +49,6 @@ class BodyForceGenerator:
         """Potential energy stored by this generator [J] (0 when it has none)."""
         return 0.0
 
-
-def _index(body, name: str) -> int:
-    """A body index from a ``Body`` handle or an int (checked against a world in ``validate``)."""
-    if isinstance(body, Body):
-        return body.index
-    if isinstance(body, bool) or not isinstance(body, (int, np.integer)) or body < 0:
-        raise TypeError(f"{name} must be a Body or a body index (int >= 0), got {body!r}")
-    return int(body)
 
 
 # -- springs -------------------------------------------------------------------------------------
@@ -125,8 +117,8 @@ class BodySpring(BodyForceGenerator):
 
     def __init__(self, body_a, local_a, body_b, local_b, k: float, rest: float,
                  damping: float = 0.0) -> None:
-        self.a = _index(body_a, "body_a")
-        self.b = _index(body_b, "body_b")
+        self.a = body_index(body_a, "body_a")
+        self.b = body_index(body_b, "body_b")
         if self.a == self.b:
             raise ValueError(f"body_a and body_b must be different bodies, both are {self.a}")
         self.local_a = check.vec3(local_a, "local_a")
@@ -177,7 +169,7 @@ class AnchoredBodySpring(BodySpring):
 
     def __init__(self, body, local, anchor, k: float, rest: float,
                  damping: float = 0.0) -> None:
-        self.a = _index(body, "body")
+        self.a = body_index(body, "body")
         self.b = -1
         self.local_a = check.vec3(local, "local")
         self.anchor = anchor
@@ -259,7 +251,7 @@ class Aero(BodyForceGenerator):
 
     def __init__(self, body, tensor, local_position=(0.0, 0.0, 0.0),
                  wind=(0.0, 0.0, 0.0)) -> None:
-        self.index = _index(body, "body")
+        self.index = body_index(body, "body")
         self.tensor = tensor
         self.local_position = check.vec3(local_position, "local_position")
         self.wind = wind
@@ -368,7 +360,7 @@ class BodyBuoyancy(BodyForceGenerator):
     def __init__(self, body, local_point, max_depth: float, volume: float,
                  water_height: float = 0.0, liquid_density: float = 1000.0,
                  gravity: float = 9.81) -> None:
-        self.index = _index(body, "body")
+        self.index = body_index(body, "body")
         self.local_point = check.vec3(local_point, "local_point")
         self.max_depth = check.scalar(max_depth, "max_depth", low=0.0, low_open=True)
         self.volume = check.scalar(volume, "volume", low=0.0, low_open=True)
@@ -505,7 +497,7 @@ class BodyForce(BodyForceGenerator):
             raise TypeError(f"fn must be callable (bodies, index, dt) -> force or "
                             f"(force, torque), got {fn!r}")
         self.fn = fn
-        self.indices = None if bodies is None else [_index(b, "bodies") for b in bodies]
+        self.indices = None if bodies is None else [body_index(b, "bodies") for b in bodies]
 
     def validate(self, bodies: Bodies) -> None:
         for i in self.indices or ():

@@ -22,20 +22,13 @@ import math
 import numpy as np
 
 from .. import _validate as check
-from .bodies import Bodies, Body, world_rotation
+from .bodies import Bodies, body_index, world_rotation
 
 #: Joint kinds, as the kernels read them.
 BALL = 0
 CONE = 1
 HINGE = 2
 
-
-def _body_index(body, name: str) -> int:
-    if isinstance(body, Body):
-        return body.index
-    if isinstance(body, bool) or not isinstance(body, (int, np.integer)) or body < 0:
-        raise TypeError(f"{name} must be a Body or a body index (int >= 0), got {body!r}")
-    return int(body)
 
 
 def _angle(value, name: str, low: float, high: float) -> float:
@@ -67,8 +60,8 @@ class Joint:
     kind = "joint"
 
     def __init__(self, body_a, local_a, body_b=None, local_b=None, *, axis=(0.0, 1.0, 0.0)):
-        self.a = _body_index(body_a, "body_a")
-        self.b = -1 if body_b is None else _body_index(body_b, "body_b")
+        self.a = body_index(body_a, "body_a")
+        self.b = -1 if body_b is None else body_index(body_b, "body_b")
         if self.a == self.b:
             raise ValueError(f"body_a and body_b must be different bodies, both are {self.a}")
         self.local_a = check.vec3(local_a, "local_a")

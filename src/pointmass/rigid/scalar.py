@@ -48,6 +48,22 @@ def qnormalize(qw, qx, qy, qz):
 
 
 @njit(cache=True, nogil=True)
+def turn(quat, i, tx, ty, tz):
+    """Rotate row i of ``quat`` (N, 4) by the small rotation vector θ = (tx, ty, tz) [rad]:
+    q += ½(0, θ)q, normalised (the position projections' angular correction). Nothing for
+    i < 0 (the world) or θ = 0."""
+    if i < 0 or (tx == 0.0 and ty == 0.0 and tz == 0.0):
+        return
+    dw, dx, dy, dz = qmul(0.0, tx, ty, tz, quat[i, 0], quat[i, 1], quat[i, 2], quat[i, 3])
+    qw, qx, qy, qz = qnormalize(quat[i, 0] + 0.5 * dw, quat[i, 1] + 0.5 * dx,
+                                quat[i, 2] + 0.5 * dy, quat[i, 3] + 0.5 * dz)
+    quat[i, 0] = qw
+    quat[i, 1] = qx
+    quat[i, 2] = qy
+    quat[i, 3] = qz
+
+
+@njit(cache=True, nogil=True)
 def qexp(wx, wy, wz, h):
     """Unit quaternion of a rotation by the angle h·|w| about w: the exact rotation of a constant
     angular velocity w [rad/s] over h [s] (not the first-order q + ½h(0, w)q, which stretches q

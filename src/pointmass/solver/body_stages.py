@@ -35,7 +35,7 @@ import math
 
 from numba import njit
 
-from ..rigid.scalar import qmul, qnormalize, qrot, qrot_inv
+from ..rigid.scalar import qrot, qrot_inv, turn
 from .kernels import bounce_target, closing_within_step
 
 #: Penetration [m] the projection leaves alone: with none, a resting point would be nudged every
@@ -248,15 +248,7 @@ def project_positions(ca, cb, n, la, lb, depth0, inv_mass, inv_i, pos, quat, max
                 tx = m[0, 0] * cx + m[0, 1] * cy + m[0, 2] * cz
                 ty = m[1, 0] * cx + m[1, 1] * cy + m[1, 2] * cz
                 tz = m[2, 0] * cx + m[2, 1] * cy + m[2, 2] * cz
-                if tx != 0.0 or ty != 0.0 or tz != 0.0:  # q += ½ (0, θ) q
-                    dw, dx, dy, dz = qmul(0.0, tx, ty, tz, quat[i, 0], quat[i, 1], quat[i, 2],
-                                          quat[i, 3])
-                    qw, qx, qy, qz = qnormalize(quat[i, 0] + 0.5 * dw, quat[i, 1] + 0.5 * dx,
-                                                quat[i, 2] + 0.5 * dy, quat[i, 3] + 0.5 * dz)
-                    quat[i, 0] = qw
-                    quat[i, 1] = qx
-                    quat[i, 2] = qy
-                    quat[i, 3] = qz
+                turn(quat, i, tx, ty, tz)  # q += ½ (0, θ) q
         if deepest <= 1.5 * SLOP:
             break
     return passes, deepest

@@ -19,7 +19,7 @@ import math
 import numpy as np
 from numba import njit
 
-from ..rigid.scalar import qmul, qnormalize, solve3
+from ..rigid.scalar import solve3, turn
 from .joint_stages import EQUAL, OFF, OFF_JOINT, _axis_mass, _point_matrix, angular_rows, separation
 
 #: Separation [m] and angle [rad] left to the velocity rows' bias (Box2D's linear slop 5 mm;
@@ -32,26 +32,12 @@ MAX_ANGULAR_CORRECTION = math.radians(8.0)
 
 
 @njit(cache=True, nogil=True)
-def _turn(quat, i, tx, ty, tz):
-    """Rotate body i by the small rotation vector θ [rad]: q += ½(0, θ)q, normalised."""
-    if i < 0 or (tx == 0.0 and ty == 0.0 and tz == 0.0):
-        return
-    dw, dx, dy, dz = qmul(0.0, tx, ty, tz, quat[i, 0], quat[i, 1], quat[i, 2], quat[i, 3])
-    qw, qx, qy, qz = qnormalize(quat[i, 0] + 0.5 * dw, quat[i, 1] + 0.5 * dx,
-                                quat[i, 2] + 0.5 * dy, quat[i, 3] + 0.5 * dz)
-    quat[i, 0] = qw
-    quat[i, 1] = qx
-    quat[i, 2] = qy
-    quat[i, 3] = qz
-
-
-@njit(cache=True, nogil=True)
 def _turn_by(quat, inv_i, i, sign, lx, ly, lz):
     """Turn body i by sign·I⁻¹·L (the position-stage twin of an angular impulse L)."""
     if i < 0:
         return
     m = inv_i[i]
-    _turn(quat, i, sign * (m[0, 0] * lx + m[0, 1] * ly + m[0, 2] * lz),
+    turn(quat, i, sign * (m[0, 0] * lx + m[0, 1] * ly + m[0, 2] * lz),
           sign * (m[1, 0] * lx + m[1, 1] * ly + m[1, 2] * lz),
           sign * (m[2, 0] * lx + m[2, 1] * ly + m[2, 2] * lz))
 
