@@ -60,7 +60,7 @@ def extents(shape, size, inv_mass, inv_inertia, out):
 
 
 @njit(cache=True, nogil=True, inline="always")
-def _root(parent, i):
+def find_root(parent, i):
     """Root of i's set, halving the path on the way (sets are rooted at their lowest index)."""
     while parent[i] != i:
         parent[i] = parent[parent[i]]
@@ -70,8 +70,8 @@ def _root(parent, i):
 
 @njit(cache=True, nogil=True, inline="always")
 def _union(parent, i, j):
-    ri = _root(parent, i)
-    rj = _root(parent, j)
+    ri = find_root(parent, i)
+    rj = find_root(parent, j)
     if ri < rj:
         parent[rj] = ri
     elif rj < ri:
@@ -99,7 +99,7 @@ def build_islands(n, ca, cb, depth, movable, link_a, link_b, parent):
         if movable[a] and movable[b]:
             _union(parent, a, b)
     for i in range(n):
-        parent[i] = _root(parent, i)
+        parent[i] = find_root(parent, i)
 
 
 @njit(cache=True, nogil=True)

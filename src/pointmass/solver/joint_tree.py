@@ -22,19 +22,13 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
+from ..rigid.islands import find_root
+
 #: Per joint, how the solver treats its point block.
 OFF = 0  # both bodies asleep (or immovable): no row at all
 ITERATIVE = 1  # Gauss–Seidel, one joint at a time (``joint_stages.solve_pass``)
 DIRECT = 2  # the exact tree solve (``joint_direct``)
 LOOP = 3  # closes a loop of a tree: solved through it (``joint_loops``)
-
-
-@njit(cache=True, nogil=True, inline="always")
-def _find(parent, i):
-    while parent[i] != i:
-        parent[i] = parent[parent[i]]
-        i = parent[i]
-    return i
 
 
 @njit(cache=True, nogil=True)
@@ -61,13 +55,13 @@ def choose(ja, jb, awake, movable, mode):
             continue
         mode[j] = LOOP
         if b >= 0:
-            ra, rb = _find(uf, a), _find(uf, b)
+            ra, rb = find_root(uf, a), find_root(uf, b)
             if ra == rb or (anchored[ra] >= 0 and anchored[rb] >= 0):
                 continue
             uf[max(ra, rb)] = min(ra, rb)
             anchored[min(ra, rb)] = max(anchored[ra], anchored[rb])
         else:
-            ra = _find(uf, a)
+            ra = find_root(uf, a)
             if anchored[ra] >= 0:
                 continue
             anchored[ra] = j
