@@ -3,7 +3,9 @@
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from collections.abc import Callable
+from dataclasses import dataclass, field
+from functools import partial
 
 import numpy as np
 from numba import njit, prange
@@ -12,7 +14,7 @@ from . import _validate as check
 from .collide import Plane
 from .contacts import ContactBuffer, ContactGenerator, friction_value, restitution_value
 from .forces import ForceGenerator, drag_force, fold
-from .particles import CHUNK, PARALLEL_MIN_PARTICLES, Particles, energy_chunk
+from .particles import CHUNK, PARALLEL_MIN_PARTICLES, Particles
 from .rigid import sleep as sleeping
 from .rigid.bodies import Bodies, Body
 from .rigid.collide import generate as generate_body_contacts
@@ -35,7 +37,10 @@ class StepStats:
             within the collision margin, negative penetration).
         iterations: Single-contact resolutions the solver performed (all substeps).
         max_penetration: Largest overlap left after resolving [m] (0 when none).
-        kinetic_energy: Total kinetic energy after the step [J].
+        kinetic_energy: Total kinetic energy after the step [J], summed when first read (a
+            property: a step whose energy nobody reads makes no pass over the velocities for
+            it). Read it before the world steps again; reading it later raises, as the state
+            it described is gone (``World.kinetic_energy()`` gives the current one).
         mode: The solver mode ("sequential" or "worst-first").
         velocity_passes: Velocity passes of the solver (all substeps; see ``pointmass.solver``).
         position_passes: Projection passes (all substeps).
@@ -47,12 +52,21 @@ class StepStats:
     contacts: int
     iterations: int
     max_penetration: float
-    kinetic_energy: float
     mode: str
     velocity_passes: int = 0
     position_passes: int = 0
     body_contacts: int = 0
     awake_bodies: int = 0
+    #: The energy once read, or what computes it (``World._energy_after``).
+    _energy: float | Callable[[], float] = field(default=math.nan, repr=False, compare=False)
+
+    @property
+    def kinetic_energy(self) -> float:
+        energy = self._energy
+        if callable(energy):
+            energy = energy()
+            object.__setattr__(self, "_energy", energy)  # frozen: cache it once
+        return energy
 
 
 
@@ -117,9 +131,8 @@ def _integrate(pos, vel, force, acc, inv_mass, damping, g, k1, k2, dt, store_acc
     (measured 49 against 16 ns a particle). Non-finite values are caught by one sum of the
     new positions, tested once (a non-finite velocity makes its position non-finite: dt > 0):
     a per-particle test cost 1–2 ns of 11; an overflow of the sum alone only costs a rescan
-    that finds nothing. The kinetic energy is not summed here: in this loop it cost 2.3 ns a
-    particle of 11.7, as a pass of its own 1.5 (``Particles.kinetic_energy``, measured on
-    8192 particles, one thread), and a world with contacts needs it after the solver anyway."""
+    that finds nothing. The kinetic energy is not summed here (in this loop it cost 2.3 ns a
+    particle of 11.7, 8192 particles on one thread): ``StepStats`` sums it only when read."""
     gx, gy, gz = g[0], g[1], g[2]
     probe = 0.0
     for i in range(start, stop):
@@ -145,35 +158,22 @@ def _integrate(pos, vel, force, acc, inv_mass, damping, g, k1, k2, dt, store_acc
 
 
 @njit(cache=True, nogil=True, parallel=True)
-def _integrate_parallel(pos, vel, force, acc, inv_mass, damping, g, k1, k2, dt, store_acc,
-                        final):
+def _integrate_parallel(pos, vel, force, acc, inv_mass, damping, g, k1, k2, dt, store_acc):
     """``_integrate`` on all cores, one chunk of ``CHUNK`` particles per task; returns the
-    first non-finite particle in chunk order (the same for any thread count), or -1, and with
-    ``final`` (no stage after this one changes velocities) the kinetic energy [J], else 0.
-
-    The energy is summed by each task right after its chunk, while the chunk is in cache, in
-    the chunks of ``Particles.kinetic_energy`` and their order: the same bits, without a
-    second parallel region (each one waits for every thread; on a loaded machine that wait
-    dominated the energy pass)."""
+    first non-finite particle in chunk order (the same for any thread count), or -1."""
     n = pos.shape[0]
     chunks = (n + CHUNK - 1) // CHUNK
     bad = np.empty(chunks, np.int64)
-    parts = np.zeros(chunks)
     for c in prange(chunks):
         start, stop = c * CHUNK, min(n, (c + 1) * CHUNK)
         bad[c] = _integrate(pos, vel, force, acc, inv_mass, damping, g, k1, k2, dt, store_acc,
                             start, stop)
-        if final:
-            parts[c] = energy_chunk(vel, inv_mass, start, stop)
     first = -1
     for c in range(chunks):
         if bad[c] >= 0:
             first = bad[c]
             break
-    total = 0.0
-    for c in range(chunks):
-        total += parts[c]
-    return first, 0.5 * total
+    return first
 
 
 class World:
@@ -251,8 +251,8 @@ class World:
         self._checked_count = 0
         self._checked_bodies = 0  # the same for bodies and the body force generators
         self._jump_check = False
-        #: The particles' kinetic energy [J] summed by the last integration, or None.
-        self._energy = None
+        #: Steps taken: a ``StepStats`` sums its kinetic energy only while this is unchanged.
+        self._steps = 0
         #: This step's generators, split by ``forces.fold``: (those that add to the
         #: accumulator, gravity + the folded accelerations, drag k1, k2).
         self._folded = ([], self._gravity, 0.0, 0.0)
@@ -498,28 +498,39 @@ class World:
             self.bodies.clear_accumulators()  # user forces and torques last one step
         if self._sleep and self.bodies.count:
             self._fall_asleep(float(dt))
+        self._steps += 1
         pen = self.contacts.penetration
-        energy = (self.particles.kinetic_energy() if self._energy is None
-                  else self._energy)
         b = self.bodies
         awake = int(np.count_nonzero(b.awake & (b.inv_mass > 0))) if b.count else 0
-        if b.count and b.awake.any():  # every body asleep: all velocities are 0
-            energy += b.kinetic_energy()
         deepest = float(pen.max()) if pen.size and pen.max() > 0 else 0.0
         rows = self._body_rows
         if rows is not None:
             deepest = max(deepest, rows.deepest)
+        for probe in self.probes:
+            probe.record(self)
+        return StepStats(contacts=self.contacts.count, iterations=iterations,
+                         max_penetration=deepest, mode=self.solver.mode,
+                         velocity_passes=velocity_passes, position_passes=position_passes,
+                         body_contacts=self.body_contacts.count, awake_bodies=awake,
+                         _energy=partial(self._energy_after, self._steps))
+
+    def _energy_after(self, steps: int) -> float:
+        """The kinetic energy for ``StepStats`` of step number ``steps``: summed now, when it
+        is read (no step pays a pass over the velocities that nobody reads), so only while the
+        world is still where that step left it."""
+        if steps != self._steps:
+            raise RuntimeError(
+                f"StepStats.kinetic_energy of step {steps} was read after step {self._steps}: "
+                "it is summed when first read, from the state its step left, which is gone. "
+                "Read it before the next step, or call World.kinetic_energy() for the current "
+                "energy (or record it every step with a probe)")
+        energy = self.kinetic_energy()
         if not math.isfinite(energy):
             raise FloatingPointError(
                 f"the kinetic energy overflowed ({energy}) at t = {self.time:.6g} s: a velocity "
                 f"is too large to square (largest |v| = "
                 f"{float(np.abs(self.particles.velocity).max()):.3g} m/s)")
-        for probe in self.probes:
-            probe.record(self)
-        return StepStats(contacts=self.contacts.count, iterations=iterations,
-                         max_penetration=deepest, kinetic_energy=energy, mode=self.solver.mode,
-                         velocity_passes=velocity_passes, position_passes=position_passes,
-                         body_contacts=self.body_contacts.count, awake_bodies=awake)
+        return energy
 
     def _substep(self, dt: float) -> SolveStats:
         p = self.particles
@@ -540,16 +551,11 @@ class World:
         # Integrate: v += a·dt, then p += v·dt (semi-implicit Euler, the cookbook's order).
         # The acceleration is stored only where it is read: the resting-contact test of the
         # particle solver and of the body stage.
-        # Without contact generators and bodies nothing changes velocities after this (and
-        # nothing reads the acceleration): the parallel integration sums the kinetic energy.
         after = bool(self.contact_generators) or self.bodies.count > 0
         args = (p.position, p.velocity, p.force, p.acceleration, p.inv_mass, p.damping, g, k1,
                 k2, dt, after)
-        self._energy = None
         if p.count >= PARALLEL_MIN_PARTICLES:
-            bad, energy = _integrate_parallel(*args, not after)
-            if not after:
-                self._energy = energy
+            bad = _integrate_parallel(*args)
         else:
             bad = _integrate(*args, 0, p.count)
         if bad >= 0:
