@@ -218,6 +218,110 @@ def _swap_contacts(out_a, out_b, out_n, out_pen, out_rest, out_key, u, v):
     out_key[u], out_key[v] = out_key[v], out_key[u]
 
 
+#: The sphere pairs' grid is dense (a slot for every cell of the spheres' bounding box, so the
+#: three cells along z next to a cell are one run of the sorted spheres) when the box has at
+#: most this many cells per sphere; spheres spread wider go to the spatial hash (a bucket per
+#: neighbour cell, each checked for other cells sharing it).
+DENSE_CELLS_PER_SPHERE = 8
+
+
+@njit(cache=True, nogil=True)
+def _grid(pos, idx, cell_size):
+    """Bin the spheres ``idx`` into cells of side ``cell_size``: their cells (n, 3), each
+    one's slot in the cell-sorted order (a stable counting sort: in a cell, index order), the
+    sorted order itself, the slot ranges per bucket (``starts``), and the grid's shape
+    (``low`` corner and ``span`` cells per axis; span[0] == 0: hashed, not dense)."""
+    n = idx.shape[0]
+    inv = 1.0 / cell_size
+    cells = np.empty((n, 3), np.int64)
+    low = np.empty(3, np.int64)
+    high = np.empty(3, np.int64)
+    for c in range(3):
+        low[c] = np.iinfo(np.int64).max
+        high[c] = np.iinfo(np.int64).min
+    for k in range(n):
+        i = idx[k]
+        for c in range(3):
+            cell = math.floor(pos[i, c] * inv)
+            cells[k, c] = cell
+            low[c] = min(low[c], cell)
+            high[c] = max(high[c], cell)
+    span = np.zeros(3, np.int64)
+    volume = 1.0
+    for c in range(3):
+        volume *= float(high[c] - low[c] + 1)
+    keys = np.empty(n, np.int64)
+    if volume <= DENSE_CELLS_PER_SPHERE * n + 64:
+        for c in range(3):
+            span[c] = high[c] - low[c] + 1
+        table = span[0] * span[1] * span[2]
+        for k in range(n):
+            keys[k] = (((cells[k, 0] - low[0]) * span[1] + cells[k, 1] - low[1]) * span[2]
+                       + cells[k, 2] - low[2])
+    else:
+        table = 1
+        while table < 2 * n:
+            table *= 2
+        for k in range(n):
+            keys[k] = _cell_hash(cells[k, 0], cells[k, 1], cells[k, 2], table - 1)
+    starts = np.zeros(table + 1, np.int64)
+    for k in range(n):
+        starts[keys[k] + 1] += 1
+    for t in range(table):
+        starts[t + 1] += starts[t]
+    order = np.empty(n, np.int64)
+    slot = np.empty(n, np.int64)
+    fill = starts[:-1].copy()
+    for k in range(n):
+        slot[k] = fill[keys[k]]
+        order[slot[k]] = k
+        fill[keys[k]] += 1
+    return cells, slot, order, starts, low, span
+
+
+@njit(cache=True, nogil=True)
+def _neighbour_runs(cells, slot, starts, low, span, k, runs):
+    """The runs of sorted slots holding sphere k's own cell (the spheres after k in it) and
+    its 13 "forward" neighbour cells, into ``runs`` rows (first, stop, cx, cy, cz); returns
+    how many. Dense: five runs (a cell's z neighbours are adjacent slots), cell column
+    unused; hashed: a bucket per cell, with the cell to check its spheres against."""
+    cx, cy, cz = cells[k, 0], cells[k, 1], cells[k, 2]
+    count = 0
+    if span[0] > 0:
+        x, y, z = cx - low[0], cy - low[1], cz - low[2]
+        # Own cell after k, then the cell at z + 1: adjacent slots.
+        base = (x * span[1] + y) * span[2] + z
+        runs[count, 0] = slot[k] + 1
+        runs[count, 1] = starts[base + 2] if z + 1 < span[2] else starts[base + 1]
+        count += 1
+        z0 = max(z - 1, 0)
+        z1 = min(z + 1, span[2] - 1)
+        for dx, dy in ((0, 1), (1, -1), (1, 0), (1, 1)):
+            if x + dx >= span[0] or y + dy < 0 or y + dy >= span[1]:
+                continue
+            row = ((x + dx) * span[1] + y + dy) * span[2]
+            runs[count, 0] = starts[row + z0]
+            runs[count, 1] = starts[row + z1 + 1]
+            count += 1
+        return count
+    mask = starts.shape[0] - 2
+    for dx in range(-1, 2):
+        for dy in range(-1, 2):
+            for dz in range(-1, 2):
+                forward = dx > 0 or (dx == 0 and (dy > 0 or (dy == 0 and dz > 0)))
+                own = dx == 0 and dy == 0 and dz == 0
+                if not (forward or own):
+                    continue
+                bucket = _cell_hash(cx + dx, cy + dy, cz + dz, mask)
+                runs[count, 0] = slot[k] + 1 if own else starts[bucket]
+                runs[count, 1] = starts[bucket + 1]
+                runs[count, 2] = cx + dx
+                runs[count, 3] = cy + dy
+                runs[count, 4] = cz + dz
+                count += 1
+    return count
+
+
 @njit(cache=True, nogil=True)
 def _sphere_pairs(pos, vel, radius, inv_mass, idx, cell_size, restitution, margin,
                   margin_fraction, sweep, dt, out_a, out_b, out_n, out_pen, out_rest, out_key,
@@ -228,31 +332,30 @@ def _sphere_pairs(pos, vel, radius, inv_mass, idx, cell_size, restitution, margi
 
     Returns the total count written or needed (if it exceeds the buffer, call again with more
     room: nothing beyond the buffer is written).
+
+    The spheres are binned (``_grid``) and copied in cell order, so a neighbour cell's spheres
+    are read from adjacent memory (against the hash-only search: 5.5 → ms a step on the
+    settled 10 000-sphere pit).
     """
     n = idx.shape[0]
-    table = 1
-    while table < 2 * n:
-        table *= 2
-    mask = table - 1
-    cells = np.empty((n, 3), np.int64)
-    keys = np.empty(n, np.int64)
-    inv = 1.0 / cell_size
-    for k in range(n):
-        i = idx[k]
-        for c in range(3):
-            cells[k, c] = math.floor(pos[i, c] * inv)
-        keys[k] = _cell_hash(cells[k, 0], cells[k, 1], cells[k, 2], mask)
-    # Counting sort of the particles by bucket.
-    starts = np.zeros(table + 1, np.int64)
-    for k in range(n):
-        starts[keys[k] + 1] += 1
-    for t in range(table):
-        starts[t + 1] += starts[t]
-    order = np.empty(n, np.int64)
-    fill = starts[:-1].copy()
-    for k in range(n):
-        order[fill[keys[k]]] = k
-        fill[keys[k]] += 1
+    cells, slot, order, starts, low, span = _grid(pos, idx, cell_size)
+    dense = span[0] > 0
+    # Cell-ordered copies of what each candidate pair reads.
+    sj = np.empty(n, np.int64)
+    sp = np.empty((n, 3))
+    sr = np.empty(n)
+    sw = np.empty(n)
+    ss = np.empty(n)
+    for s in range(n):
+        j = idx[order[s]]
+        sj[s] = j
+        sp[s, 0] = pos[j, 0]
+        sp[s, 1] = pos[j, 1]
+        sp[s, 2] = pos[j, 2]
+        sr[s] = radius[j]
+        sw[s] = inv_mass[j]
+        ss[s] = sweep[j]
+    runs = np.empty((14, 5), np.int64)
 
     count = start
     capacity = out_a.shape[0]
@@ -264,69 +367,61 @@ def _sphere_pairs(pos, vel, radius, inv_mass, idx, cell_size, restitution, margi
         # written as (lower index, higher index), so its key and its normal's direction do not
         # change when the two cross a cell boundary (written as met, 9 % of a settled
         # 10 000-sphere pit's contacts flipped every step and lost their warm start).
-        for dx in range(-1, 2):
-            for dy in range(-1, 2):
-                for dz in range(-1, 2):
-                    forward = dx > 0 or (dx == 0 and (dy > 0 or (dy == 0 and dz > 0)))
-                    own = dx == 0 and dy == 0 and dz == 0
-                    if not (forward or own):
+        px, py, pz = pos[i, 0], pos[i, 1], pos[i, 2]
+        ri, wi, si = radius[i], inv_mass[i], sweep[i]
+        for r in range(_neighbour_runs(cells, slot, starts, low, span, k, runs)):
+            for s in range(runs[r, 0], runs[r, 1]):
+                # A hashed bucket may hold other cells: only take the run's own cell.
+                if not dense:
+                    m = order[s]
+                    if (cells[m, 0] != runs[r, 2] or cells[m, 1] != runs[r, 3]
+                            or cells[m, 2] != runs[r, 4]):
                         continue
-                    cx = cells[k, 0] + dx
-                    cy = cells[k, 1] + dy
-                    cz = cells[k, 2] + dz
-                    bucket = _cell_hash(cx, cy, cz, mask)
-                    for s in range(starts[bucket], starts[bucket + 1]):
-                        m = order[s]
-                        if own and m <= k:
-                            continue
-                        # Another cell may share the bucket: only take this cell's particles.
-                        if cells[m, 0] != cx or cells[m, 1] != cy or cells[m, 2] != cz:
-                            continue
-                        j = idx[m]
-                        if inv_mass[i] == 0.0 and inv_mass[j] == 0.0:
-                            continue
-                        ddx = pos[i, 0] - pos[j, 0]
-                        ddy = pos[i, 1] - pos[j, 1]
-                        ddz = pos[i, 2] - pos[j, 2]
-                        reach = radius[i] + radius[j]
-                        if margin >= 0.0:
-                            catch = reach + margin
-                        else:
-                            catch = reach + margin_fraction * max(radius[i], radius[j])
-                        d2 = ddx * ddx + ddy * ddy + ddz * ddz
-                        if d2 >= (catch + sweep[i] + sweep[j]) ** 2:
-                            continue
-                        nx, ny, nz = ddx, ddy, ddz
-                        if d2 >= catch * catch:
-                            # Beyond the margin but fast: a contact only if the pair would
-                            # touch within the step, with the normal at that moment (so a pair
-                            # that passes by is not deflected by a ghost contact).
-                            nx, ny, nz = _impact_direction(ddx, ddy, ddz, vel, i, j, reach, dt)
-                            if nx == 0.0 and ny == 0.0 and nz == 0.0:
-                                continue
-                        if count < capacity:
-                            dist = math.sqrt(nx * nx + ny * ny + nz * nz)
-                            if dist > 0.0:
-                                out_n[count, 0] = nx / dist
-                                out_n[count, 1] = ny / dist
-                                out_n[count, 2] = nz / dist
-                            else:  # same centre: any direction separates them; pick up
-                                out_n[count, 0] = 0.0
-                                out_n[count, 1] = 1.0
-                                out_n[count, 2] = 0.0
-                            # The gap along that normal (the separation it must not close).
-                            along = (ddx * out_n[count, 0] + ddy * out_n[count, 1]
-                                     + ddz * out_n[count, 2])
-                            out_pen[count] = reach - along
-                            out_rest[count] = restitution
-                            lo, hi = (i, j) if i < j else (j, i)
-                            if lo != i:  # the normal points from b to a
-                                for c in range(3):
-                                    out_n[count, c] = -out_n[count, c]
-                            out_a[count] = lo
-                            out_b[count] = hi
-                            out_key[count] = pair_key(lo, hi)
-                        count += 1
+                if wi == 0.0 and sw[s] == 0.0:
+                    continue
+                j = sj[s]
+                ddx = px - sp[s, 0]
+                ddy = py - sp[s, 1]
+                ddz = pz - sp[s, 2]
+                reach = ri + sr[s]
+                if margin >= 0.0:
+                    catch = reach + margin
+                else:
+                    catch = reach + margin_fraction * max(ri, sr[s])
+                d2 = ddx * ddx + ddy * ddy + ddz * ddz
+                if d2 >= (catch + si + ss[s]) ** 2:
+                    continue
+                nx, ny, nz = ddx, ddy, ddz
+                if d2 >= catch * catch:
+                    # Beyond the margin but fast: a contact only if the pair would
+                    # touch within the step, with the normal at that moment (so a pair
+                    # that passes by is not deflected by a ghost contact).
+                    nx, ny, nz = _impact_direction(ddx, ddy, ddz, vel, i, j, reach, dt)
+                    if nx == 0.0 and ny == 0.0 and nz == 0.0:
+                        continue
+                if count < capacity:
+                    dist = math.sqrt(nx * nx + ny * ny + nz * nz)
+                    if dist > 0.0:
+                        out_n[count, 0] = nx / dist
+                        out_n[count, 1] = ny / dist
+                        out_n[count, 2] = nz / dist
+                    else:  # same centre: any direction separates them; pick up
+                        out_n[count, 0] = 0.0
+                        out_n[count, 1] = 1.0
+                        out_n[count, 2] = 0.0
+                    # The gap along that normal (the separation it must not close).
+                    along = (ddx * out_n[count, 0] + ddy * out_n[count, 1]
+                             + ddz * out_n[count, 2])
+                    out_pen[count] = reach - along
+                    out_rest[count] = restitution
+                    lo, hi = (i, j) if i < j else (j, i)
+                    if lo != i:  # the normal points from b to a
+                        for c in range(3):
+                            out_n[count, c] = -out_n[count, c]
+                    out_a[count] = lo
+                    out_b[count] = hi
+                    out_key[count] = pair_key(lo, hi)
+                count += 1
         # Sort this particle's few contacts by key, so the keys come out sorted (the warm
         # start then matches them against the previous step's in linear time).
         last = min(count, capacity)
