@@ -52,25 +52,70 @@ def _slab_groups(ca, cb, slab, slabs, group):
             group[c] = 2 * slabs
 
 
+#: Bins per slab of the histogram that places the slab boundaries (``_slab_of``).
+_BINS_PER_SLAB = 64
+
+
+@njit(cache=True, nogil=True)
+def _slab_of(position, slabs, slab):
+    """slab[i] for each particle: slabs along the widest axis of ``position``, each holding
+    about an equal share of the particles (a histogram of ``_BINS_PER_SLAB`` bins a slab
+    places the boundaries: linear time, where ranking the particles sorted them)."""
+    n = position.shape[0]
+    axis = 0
+    width = -1.0
+    low = 0.0
+    for c in range(3):
+        lo = np.inf
+        hi = -np.inf
+        for i in range(n):
+            lo = min(lo, position[i, c])
+            hi = max(hi, position[i, c])
+        if hi - lo > width:
+            axis, width, low = c, hi - lo, lo
+    bins = _BINS_PER_SLAB * slabs
+    scale = bins / width if width > 0.0 else 0.0
+    count = np.zeros(bins + 1, np.int64)
+    for i in range(n):
+        count[min(int((position[i, axis] - low) * scale), bins - 1) + 1] += 1
+    for b in range(bins):
+        count[b + 1] += count[b]  # count[b]: particles in bins before b
+    for i in range(n):
+        b = min(int((position[i, axis] - low) * scale), bins - 1)
+        slab[i] = min(count[b] * slabs // n, slabs - 1)
+
+
+@njit(cache=True, nogil=True)
+def _sort_rows(group, groups):
+    """A stable counting sort of the rows by group: (rows in group order, group starts)."""
+    starts = np.zeros(groups + 1, np.int64)
+    for c in range(group.shape[0]):
+        starts[group[c] + 1] += 1
+    for g in range(groups):
+        starts[g + 1] += starts[g]
+    order = np.empty(group.shape[0], np.int64)
+    fill = starts[:-1].copy()
+    for c in range(group.shape[0]):
+        order[fill[group[c]]] = c
+        fill[group[c]] += 1
+    return order, starts
+
+
 def block_rows(ca: np.ndarray, cb: np.ndarray, position: np.ndarray,
                slabs: int = SLABS) -> Phases:
     """Group the rows (a, b) (M,) for parallel passes by slabs of particles along the widest
-    axis of ``position`` (N, 3), each slab holding an equal share of the particles: the rows
-    inside each slab (phase 0, a slab per group), those between slabs s and s + 1 for even s
-    (phase 1), for odd s (phase 2), and the rest (phase 3, one group, serial)."""
+    axis of ``position`` (N, 3), each slab holding about an equal share of the particles: the
+    rows inside each slab (phase 0, a slab per group), those between slabs s and s + 1 for
+    even s (phase 1), for odd s (phase 2), and the rest (phase 3, one group, serial)."""
     if not 1 <= slabs:
         raise ValueError(f"slabs must be an integer >= 1, got {slabs!r}")
     n = position.shape[0]
-    axis = int(np.argmax(position.max(axis=0) - position.min(axis=0))) if n else 0
-    rank = np.empty(n, np.int64)
-    rank[np.argsort(position[:, axis], kind="stable")] = np.arange(n)
-    slab = rank * slabs // max(n, 1)
+    slab = np.zeros(n, np.int64)
+    if n:
+        _slab_of(position, slabs, slab)
     group = np.empty(ca.shape[0], np.int64)
     _slab_groups(ca, cb, slab, slabs, group)
-    counts = np.bincount(group, minlength=2 * slabs + 1)
-    order = np.argsort(group, kind="stable")  # row order kept within a group
-    group_starts = np.zeros(2 * slabs + 2, np.int64)
-    np.cumsum(counts, out=group_starts[1:])
+    order, group_starts = _sort_rows(group, 2 * slabs + 1)  # row order kept within a group
     # Phases over the groups: inside slabs; boundaries 0-1, 2-3, ...; 1-2, 3-4, ...; overflow.
     # The boundary groups are listed even first, then odd (a permutation of groups).
     even = list(range(slabs, 2 * slabs - 1, 2))
