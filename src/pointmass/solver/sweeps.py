@@ -25,46 +25,76 @@ def has_friction(con):
     return False
 
 
+def _velocity_rows_for(friction: bool):
+    """``velocity_rows`` compiled for sets with friction or without: ``friction`` is a
+    constant of the closure, so a frictionless set's loop has no friction branch at all
+    (measured on the settled 10 000-sphere pit: 0.57 → 0.51 ms a pass, with the row's
+    velocities read into locals once; the same bits)."""
+
+    def rows_kernel(bod, con, rows, lo, hi, dt):
+        ca, cb, n, mu, wa, wb, k = con.a, con.b, con.n, con.mu, con.wa, con.wb, con.k
+        target, impulse, tangent, bil = con.target, con.impulse, con.tangent, con.bil
+        pos, vel, disp = bod.pos, bod.vel, bod.disp
+        largest = 0.0
+        used = 0
+        for r in range(lo, hi):
+            c = r if rows is None else rows[r]
+            change = 0.0
+            kc = k[c]
+            if kc != 0.0:
+                a = ca[c]  # kernels.relative and push written out (see the module docstring)
+                b = cb[c]
+                nx, ny, nz = n[c, 0], n[c, 1], n[c, 2]
+                ax, ay, az = vel[a, 0], vel[a, 1], vel[a, 2]
+                bx = by = bz = 0.0
+                if b >= 0:
+                    bx, by, bz = vel[b, 0], vel[b, 1], vel[b, 2]
+                    vs = (ax - bx) * nx + (ay - by) * ny + (az - bz) * nz
+                else:
+                    vs = ax * nx + ay * ny + az * nz
+                old = impulse[c]
+                total = old + (target[c] - vs) * kc
+                if total < 0.0 and not bil[c]:
+                    total = 0.0  # contacts push, never pull (a rod does both: it is bilateral)
+                step = total - old
+                if step != 0.0:
+                    impulse[c] = total
+                    w = wa[c]
+                    vel[a, 0] = ax + nx * step * w
+                    vel[a, 1] = ay + ny * step * w
+                    vel[a, 2] = az + nz * step * w
+                    if b >= 0:
+                        w = wb[c]
+                        vel[b, 0] = bx - nx * step * w
+                        vel[b, 1] = by - ny * step * w
+                        vel[b, 2] = bz - nz * step * w
+                    change = abs(step) / kc
+                    used += 1
+                if friction and mu[c] > 0.0:
+                    change = max(change, friction_accumulated(pos, vel, disp, ca, cb, n, wa, wb,
+                                                              k, mu, impulse, tangent, c, dt))
+            largest = max(largest, change)
+        return largest, used
+
+    return njit(cache=True, nogil=True)(rows_kernel)
+
+
+_rows_with_friction = _velocity_rows_for(True)
+_rows_without_friction = _velocity_rows_for(False)
+
+
 @njit(cache=True, nogil=True)
 def velocity_rows(bod, con, rows, lo, hi, dt, friction):
     """Sequential impulses (Catto; box2d-lite's ``Arbiter::ApplyImpulse``) on rows[lo:hi]:
     each keeps an accumulated impulse clamped at ≥ 0 (contacts push, never pull, and a warm
     start that was too strong is taken back; a bilateral rod is not clamped), aiming at the
     separating velocity ``target``; friction right after each normal impulse, where
-    ``friction`` (``has_friction``: a frictionless set reads no μ; measured on the settled
-    10 000-sphere pit, 0.75 against 0.67 ms a pass).
+    ``friction`` (``has_friction``: a frictionless set runs a loop without it).
 
     Returns (the largest velocity change of a row [m/s], the rows whose impulse changed)."""
-    ca, cb, n, mu, wa, wb, k = con.a, con.b, con.n, con.mu, con.wa, con.wb, con.k
-    target, impulse, tangent, bil = con.target, con.impulse, con.tangent, con.bil
-    pos, vel, disp = bod.pos, bod.vel, bod.disp
-    largest = 0.0
-    used = 0
-    for r in range(lo, hi):
-        c = r if rows is None else rows[r]
-        change = 0.0
-        if k[c] != 0.0:
-            vs = relative(vel, ca, cb, n, c)
-            old = impulse[c]
-            total = old + (target[c] - vs) * k[c]
-            if total < 0.0 and not bil[c]:
-                total = 0.0  # contacts push, never pull (a rod does both: it is bilateral)
-            step = total - old
-            if step != 0.0:
-                impulse[c] = total
-                a = ca[c]  # kernels.push written out (see the module docstring)
-                b = cb[c]
-                for i in range(3):
-                    vel[a, i] += n[c, i] * step * wa[c]
-                    if b >= 0:
-                        vel[b, i] -= n[c, i] * step * wb[c]
-                change = abs(step) / k[c]
-                used += 1
-            if friction and mu[c] > 0.0:
-                change = max(change, friction_accumulated(pos, vel, disp, ca, cb, n, wa, wb, k,
-                                                          mu, impulse, tangent, c, dt))
-        largest = max(largest, change)
-    return largest, used
+    if friction:
+        return _rows_with_friction(bod, con, rows, lo, hi, dt)
+    return _rows_without_friction(bod, con, rows, lo, hi, dt)
 
 
 @njit(cache=True, nogil=True)
