@@ -3,8 +3,7 @@
 from __future__ import annotations
 
 import math
-from collections.abc import Callable
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 from functools import partial
 
 import numpy as np
@@ -57,16 +56,32 @@ class StepStats:
     position_passes: int = 0
     body_contacts: int = 0
     awake_bodies: int = 0
-    #: The energy once read, or what computes it (``World._energy_after``).
-    _energy: float | Callable[[], float] = field(default=math.nan, repr=False, compare=False)
+
+    # The energy is not a field: ``_energy`` holds it once read, or what computes it
+    # (``World._energy_after``, set by the step), so ``asdict``, ``==`` and ``repr`` never
+    # reach the world behind it.
 
     @property
     def kinetic_energy(self) -> float:
-        energy = self._energy
+        energy = self.__dict__.get("_energy")
+        if energy is None:
+            raise RuntimeError("this StepStats was pickled or deep-copied before its kinetic "
+                               "energy was read (it is summed when first read, from the world "
+                               "that stepped; a copy does not carry the world along)")
         if callable(energy):
             energy = energy()
             object.__setattr__(self, "_energy", energy)  # frozen: cache it once
         return energy
+
+    def __getstate__(self) -> dict:
+        state = dict(self.__dict__)
+        if callable(state.get("_energy")):
+            del state["_energy"]  # a pickle or deep copy does not carry the world along
+        return state
+
+    def __setstate__(self, state: dict) -> None:
+        for name, value in state.items():
+            object.__setattr__(self, name, value)
 
 
 
@@ -508,11 +523,12 @@ class World:
             deepest = max(deepest, rows.deepest)
         for probe in self.probes:
             probe.record(self)
-        return StepStats(contacts=self.contacts.count, iterations=iterations,
-                         max_penetration=deepest, mode=self.solver.mode,
-                         velocity_passes=velocity_passes, position_passes=position_passes,
-                         body_contacts=self.body_contacts.count, awake_bodies=awake,
-                         _energy=partial(self._energy_after, self._steps))
+        stats = StepStats(contacts=self.contacts.count, iterations=iterations,
+                          max_penetration=deepest, mode=self.solver.mode,
+                          velocity_passes=velocity_passes, position_passes=position_passes,
+                          body_contacts=self.body_contacts.count, awake_bodies=awake)
+        object.__setattr__(stats, "_energy", partial(self._energy_after, self._steps))
+        return stats
 
     def _energy_after(self, steps: int) -> float:
         """The kinetic energy for ``StepStats`` of step number ``steps``: summed now, when it

@@ -117,3 +117,21 @@ def test_the_step_energy_is_summed_when_read_and_only_while_its_state_lasts():
     assert stats.kinetic_energy == pytest.approx(exact, rel=1e-12)  # read before: kept
     with pytest.raises(RuntimeError, match=r"read after step 5.*World.kinetic_energy\(\)"):
         _ = unread.kinetic_energy
+
+
+def test_step_stats_copy_pickle_and_compare_without_the_world_behind_them():
+    """The energy's source is not a field: ``asdict``, ``==`` and ``repr`` leave it out, and a
+    pickle carries the energy once read, never the world (unread, it says so when read)."""
+    import dataclasses
+    import pickle
+
+    world = pm.World(gravity=(0, 0, 0))
+    world.add_particle(velocity=(2.0, 0.0, 0.0), mass=3.0)
+    unread = world.step(0.1)
+    read = world.step(0.1)
+    assert read.kinetic_energy == 6.0
+    assert "kinetic" not in repr(read) and "_energy" not in dataclasses.asdict(read)
+    assert read == unread
+    assert pickle.loads(pickle.dumps(read)).kinetic_energy == 6.0
+    with pytest.raises(RuntimeError, match="pickled or deep-copied before"):
+        _ = pickle.loads(pickle.dumps(unread)).kinetic_energy
