@@ -84,8 +84,6 @@ class StepStats:
             object.__setattr__(self, name, value)
 
 
-
-
 @njit(cache=True, inline="always")
 def _integrate_particle(px, py, pz, vx, vy, vz, fx, fy, fz, w, d, gx, gy, gz, k1, k2, dt):
     """Semi-implicit Euler for one particle, in the cookbook's order: v += a·dt, v *= d^dt,
