@@ -25,6 +25,16 @@ def has_friction(con):
     return False
 
 
+#: Rows a velocity pass visits in turn from this many runs of the row list (row i of run 0,
+#: row i of run 1, then row i + 1 of each): consecutive rows of one run share a particle, so
+#: each waits for the last one's velocity; rows of different runs (other particles, far
+#: apart) overlap in the processor (measured on the settled 10 000-sphere pit: a pass
+#: 0.46 → 0.38 ms with two runs, 0.37 with four). Sets smaller than ``STREAMS_MIN_ROWS`` keep
+#: plain row order.
+STREAMS = 2
+STREAMS_MIN_ROWS = 256
+
+
 def _velocity_rows_for(friction: bool):
     """``velocity_rows`` compiled for sets with friction or without: ``friction`` is a
     constant of the closure, so a frictionless set's loop has no friction branch at all
@@ -37,43 +47,49 @@ def _velocity_rows_for(friction: bool):
         pos, vel, disp = bod.pos, bod.vel, bod.disp
         largest = 0.0
         used = 0
-        for r in range(lo, hi):
-            c = r if rows is None else rows[r]
-            change = 0.0
-            kc = k[c]
-            if kc != 0.0:
-                a = ca[c]  # kernels.relative and push written out (see the module docstring)
-                b = cb[c]
-                nx, ny, nz = n[c, 0], n[c, 1], n[c, 2]
-                ax, ay, az = vel[a, 0], vel[a, 1], vel[a, 2]
-                bx = by = bz = 0.0
-                if b >= 0:
-                    bx, by, bz = vel[b, 0], vel[b, 1], vel[b, 2]
-                    vs = (ax - bx) * nx + (ay - by) * ny + (az - bz) * nz
-                else:
-                    vs = ax * nx + ay * ny + az * nz
-                old = impulse[c]
-                total = old + (target[c] - vs) * kc
-                if total < 0.0 and not bil[c]:
-                    total = 0.0  # contacts push, never pull (a rod does both: it is bilateral)
-                step = total - old
-                if step != 0.0:
-                    impulse[c] = total
-                    w = wa[c]
-                    vel[a, 0] = ax + nx * step * w
-                    vel[a, 1] = ay + ny * step * w
-                    vel[a, 2] = az + nz * step * w
+        streams = STREAMS if hi - lo >= STREAMS_MIN_ROWS else 1
+        run = (hi - lo + streams - 1) // streams
+        for i in range(run):
+            for s in range(streams):
+                r = lo + i + s * run
+                if r >= hi:
+                    break
+                c = r if rows is None else rows[r]
+                change = 0.0
+                kc = k[c]
+                if kc != 0.0:
+                    a = ca[c]  # kernels.relative and push written out (see the module docstring)
+                    b = cb[c]
+                    nx, ny, nz = n[c, 0], n[c, 1], n[c, 2]
+                    ax, ay, az = vel[a, 0], vel[a, 1], vel[a, 2]
+                    bx = by = bz = 0.0
                     if b >= 0:
-                        w = wb[c]
-                        vel[b, 0] = bx - nx * step * w
-                        vel[b, 1] = by - ny * step * w
-                        vel[b, 2] = bz - nz * step * w
-                    change = abs(step) / kc
-                    used += 1
-                if friction and mu[c] > 0.0:
-                    change = max(change, friction_accumulated(pos, vel, disp, ca, cb, n, wa, wb,
-                                                              k, mu, impulse, tangent, c, dt))
-            largest = max(largest, change)
+                        bx, by, bz = vel[b, 0], vel[b, 1], vel[b, 2]
+                        vs = (ax - bx) * nx + (ay - by) * ny + (az - bz) * nz
+                    else:
+                        vs = ax * nx + ay * ny + az * nz
+                    old = impulse[c]
+                    total = old + (target[c] - vs) * kc
+                    if total < 0.0 and not bil[c]:
+                        total = 0.0  # contacts push, never pull (a rod does both: it is bilateral)
+                    step = total - old
+                    if step != 0.0:
+                        impulse[c] = total
+                        w = wa[c]
+                        vel[a, 0] = ax + nx * step * w
+                        vel[a, 1] = ay + ny * step * w
+                        vel[a, 2] = az + nz * step * w
+                        if b >= 0:
+                            w = wb[c]
+                            vel[b, 0] = bx - nx * step * w
+                            vel[b, 1] = by - ny * step * w
+                            vel[b, 2] = bz - nz * step * w
+                        change = abs(step) / kc
+                        used += 1
+                    if friction and mu[c] > 0.0:
+                        change = max(change, friction_accumulated(pos, vel, disp, ca, cb, n, wa, wb,
+                                                                  k, mu, impulse, tangent, c, dt))
+                largest = max(largest, change)
         return largest, used
 
     return njit(cache=True, nogil=True)(rows_kernel)
