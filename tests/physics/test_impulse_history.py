@@ -67,3 +67,14 @@ def test_unkeyed_contacts_are_dropped_and_the_rest_sorted_from_their_rows():
     history.keep(keys, np.arange(6.0), None)
     assert np.array_equal(history.keys, [2, 4, 6, 8])
     assert np.array_equal(history._normal, [2.0, 5.0, 3.0, 0.0])
+
+
+def test_a_key_given_twice_is_sorted_afresh_not_lost():
+    history = ImpulseHistory()
+    _step(history, np.array([4, 8, 2], np.int64))
+    keys = np.array([8, 4, 8, 2], np.int64)  # a custom generator's duplicate
+    normal, tangent = np.empty(4), np.empty((4, 3))
+    history.recall(keys, normal, tangent)
+    history.keep(keys, np.arange(4.0), None)
+    assert np.array_equal(history.keys, [2, 4, 8, 8])
+    assert np.array_equal(history._normal, [3.0, 1.0, 0.0, 2.0])

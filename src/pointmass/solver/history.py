@@ -67,7 +67,8 @@ def _sort_by_recalled_rows(keys, rows, old_keys, order):
     sorted, then the two runs are merged. Linear in the contacts but for the few new ones (the
     settled 10 000-sphere pit: 35 000 contacts, a few hundred new a step; numpy's argsort of
     their ~3 300 sorted runs took 0.56 ms). Returns False, leaving ``order`` unusable, if a
-    row does not hold its contact's key (``keys`` changed since the recall)."""
+    row does not hold its contact's key (``keys`` changed since the recall) or two contacts
+    share one (a custom generator's keys): the caller then sorts afresh."""
     m = keys.shape[0]
     if rows.shape[0] != m:
         return False
@@ -76,8 +77,8 @@ def _sort_by_recalled_rows(keys, rows, old_keys, order):
     for c in range(m):
         r = rows[c]
         if r >= 0:
-            if old_keys[r] != keys[c]:
-                return False
+            if old_keys[r] != keys[c] or at_old[r] >= 0:
+                return False  # keys changed since the recall, or a key came twice
             at_old[r] = c
         else:
             fresh += 1
