@@ -26,6 +26,7 @@ import numpy as np
 from numba import njit
 
 from . import _validate as check
+from ._sort import counting_sort
 from .contacts import ContactBuffer, ContactGenerator, friction_value, restitution_value
 from .forces import _Selection
 from .keys import pair_key, plane_key_base, plane_serial
@@ -265,18 +266,10 @@ def _grid(pos, idx, cell_size):
             table *= 2
         for k in range(n):
             keys[k] = _cell_hash(cells[k, 0], cells[k, 1], cells[k, 2], table - 1)
-    starts = np.zeros(table + 1, np.int64)
-    for k in range(n):
-        starts[keys[k] + 1] += 1
-    for t in range(table):
-        starts[t + 1] += starts[t]
-    order = np.empty(n, np.int64)
+    order, starts = counting_sort(keys, table)
     slot = np.empty(n, np.int64)
-    fill = starts[:-1].copy()
-    for k in range(n):
-        slot[k] = fill[keys[k]]
-        order[slot[k]] = k
-        fill[keys[k]] += 1
+    for s in range(n):
+        slot[order[s]] = s
     return cells, slot, order, starts, low, span
 
 

@@ -27,6 +27,8 @@ from collections import namedtuple
 import numpy as np
 from numba import njit
 
+from .._sort import counting_sort
+
 #: Slabs of particles for ``block_rows``: a fixed number, so the grouping (and so the result)
 #: does not depend on the number of threads; enough for 16 threads at one slab each.
 SLABS = 16
@@ -85,22 +87,6 @@ def _slab_of(position, slabs, slab):
         slab[i] = min(count[b] * slabs // n, slabs - 1)
 
 
-@njit(cache=True, nogil=True)
-def _sort_rows(group, groups):
-    """A stable counting sort of the rows by group: (rows in group order, group starts)."""
-    starts = np.zeros(groups + 1, np.int64)
-    for c in range(group.shape[0]):
-        starts[group[c] + 1] += 1
-    for g in range(groups):
-        starts[g + 1] += starts[g]
-    order = np.empty(group.shape[0], np.int64)
-    fill = starts[:-1].copy()
-    for c in range(group.shape[0]):
-        order[fill[group[c]]] = c
-        fill[group[c]] += 1
-    return order, starts
-
-
 def block_rows(ca: np.ndarray, cb: np.ndarray, position: np.ndarray,
                slabs: int = SLABS) -> Phases:
     """Group the rows (a, b) (M,) for parallel passes by slabs of particles along the widest
@@ -115,7 +101,7 @@ def block_rows(ca: np.ndarray, cb: np.ndarray, position: np.ndarray,
         _slab_of(position, slabs, slab)
     group = np.empty(ca.shape[0], np.int64)
     _slab_groups(ca, cb, slab, slabs, group)
-    order, group_starts = _sort_rows(group, 2 * slabs + 1)  # row order kept within a group
+    order, group_starts = counting_sort(group, 2 * slabs + 1)  # row order kept within a group
     # Phases over the groups: inside slabs; boundaries 0-1, 2-3, ...; 1-2, 3-4, ...; overflow.
     # The boundary groups are listed even first, then odd (a permutation of groups).
     even = list(range(slabs, 2 * slabs - 1, 2))
