@@ -8,7 +8,8 @@ import numpy as np
 import pytest
 
 import pointmass as pm
-from pointmass.collide import DEFAULT_MARGIN_FRACTION, DENSE_CELLS_PER_SPHERE
+from pointmass.collide import DEFAULT_MARGIN_FRACTION
+from pointmass.sphere_pairs import DENSE_CELLS_PER_SPHERE
 
 
 def _brute_force(position, radius):
@@ -69,3 +70,68 @@ def test_the_grid_finds_exactly_the_pairs_brute_force_finds(kind, seed):
     assert np.allclose(np.linalg.norm(normal, axis=1), 1.0)
     towards = np.einsum("ij,ij->i", position[a] - position[b], normal)
     assert np.all(towards > 0), "normals point from b to a"
+
+
+# --- the pair list kept between steps (``sphere_pairs.PairList``) ----------------------------
+
+def _pour(seed: int = 0, n: int = 200):
+    """Spheres poured into a box: fast at first (the list is searched often), then settling."""
+    rng = np.random.default_rng(seed)
+    side = 4.0
+    position = np.column_stack([rng.uniform(-1.6, 1.6, n), rng.uniform(0.5, 12.0, n),
+                                rng.uniform(-1.6, 1.6, n)])
+    world = pm.World()
+    world.add_particles(position, radii=rng.uniform(0.15, 0.3, n))
+    world.add(pm.Box((-side / 2, 0.0, -side / 2), (side / 2, 30.0, side / 2)))
+    spheres = pm.SphereCollisions()
+    world.add(spheres)
+    return world, spheres
+
+
+def test_a_kept_list_gives_the_trajectory_of_a_fresh_search_every_step():
+    kept, kept_spheres = _pour()
+    fresh, fresh_spheres = _pour()
+    for _ in range(240):
+        kept.step(1 / 60)
+        fresh_spheres._pairs.clear()  # forget the list: the grid is searched again
+        fresh.step(1 / 60)
+    assert np.array_equal(kept.particles.position, fresh.particles.position)
+    assert np.array_equal(kept.particles.velocity, fresh.particles.velocity)
+    assert fresh_spheres._pairs.searches == 240
+    assert kept_spheres._pairs.searches < 180, "the list was kept over steps (a fast pour)"
+    assert kept.contacts.count > 200, "the spheres ended up touching"
+
+
+def test_contacts_come_in_key_order():
+    world, _ = _pour(seed=3)
+    for _ in range(120):
+        world.step(1 / 60)
+    spheres = world.contacts.b >= 0
+    keys = world.contacts.key[spheres]
+    assert keys.shape[0] > 100
+    assert np.all(np.diff(keys) > 0)
+
+
+def test_a_sphere_moved_by_hand_is_found_at_once():
+    world = pm.World(gravity=(0, 0, 0))
+    world.add_particles([(0.0, 0.0, 0.0), (10.0, 0.0, 0.0)], radii=0.5)
+    spheres = pm.SphereCollisions()
+    world.add(spheres)
+    world.step(1 / 60)
+    assert world.contacts.count == 0
+    world.particles.position[1] = (0.9, 0.0, 0.0)  # teleported into the first
+    world.step(1 / 60)
+    assert world.contacts.count == 1
+    assert world.particles.position[1, 0] - world.particles.position[0, 0] >= 1.0 - 1e-6, \
+        "and pushed apart"
+
+
+def test_a_sphere_grown_by_hand_is_found_at_once():
+    world = pm.World(gravity=(0, 0, 0))
+    world.add_particles([(0.0, 0.0, 0.0), (1.5, 0.0, 0.0)], radii=0.5)
+    world.add(pm.SphereCollisions())
+    world.step(1 / 60)
+    assert world.contacts.count == 0
+    world.particles.radius[1] = 1.2
+    world.step(1 / 60)
+    assert world.contacts.count == 1
