@@ -69,18 +69,34 @@ def test_parallel_passes_are_bit_identical_for_one_thread_or_two(monkeypatch):
     assert one[2] == two[2]
 
 
+def _settling(world, steps: int) -> float:
+    """Step ``world``; the mean speed [m/s] averaged over the last third of the steps (one
+    instant of a compacting pile is chaotic: over seeds 0-3 at 5 s the serial sweep's alone
+    ranged 0.06-0.11 m/s, while this average moved by 10-40 % between the two solvers)."""
+    speeds = []
+    for k in range(steps):
+        world.step(DT)
+        if k >= steps - steps // 3:
+            speeds.append(np.linalg.norm(world.particles.velocity, axis=1).mean())
+    return float(np.mean(speeds))
+
+
 @pytest.mark.slow
 def test_a_pile_solved_in_parallel_settles_like_the_serial_one(monkeypatch):
     """400 spheres, 5 s: overlap ≤ 1 % of the diameter, no sphere below the floor by more than
-    0.1 % of it, and the mean speed within 50 % of the serial sweep's (a different row order
-    converges to the same solution, by another road)."""
-    position, velocity, stats = _pit_run(monkeypatch, 2, 300)
+    0.1 % of it, and the mean speed (over the last 100 steps) within 50 % of the serial
+    sweep's (a different row order converges to the same solution, by another road)."""
+    monkeypatch.setattr(solver_module, "PARALLEL_MIN_CONTACTS", 0)
+    saved = numba.get_num_threads()
+    try:
+        numba.set_num_threads(2)
+        parallel = ball_pit(400)
+        speed = _settling(parallel, 300)
+    finally:
+        numba.set_num_threads(saved)
+    stats = parallel.step(DT)
     assert stats.max_penetration <= 0.01
-    assert (position[:, 1] - 0.5).min() >= -1e-3
+    assert (parallel.particles.position[:, 1] - 0.5).min() >= -1e-3
     monkeypatch.setattr(solver_module, "PARALLEL_MIN_CONTACTS", 10**12)
-    serial = ball_pit(400)
-    for _ in range(300):
-        serial.step(DT)
-    speed = np.linalg.norm(velocity, axis=1).mean()
-    reference = np.linalg.norm(serial.particles.velocity, axis=1).mean()
+    reference = _settling(ball_pit(400), 300)
     assert speed <= 1.5 * reference + 1e-3, (speed, reference)
