@@ -1,4 +1,4 @@
-"""A stable counting sort, shared by the sphere grid (``collide._grid``) and the solver's row
+"""A stable counting sort, shared by the sphere grid (``sphere_pairs``) and the solver's row
 blocks (``solver.partition``)."""
 
 from __future__ import annotations

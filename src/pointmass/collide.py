@@ -52,7 +52,7 @@ def _plane_contacts(pos, radius, inv_mass, idx, normal, offset, margin, margin_f
                     start):
     """Contacts of the movable particles ``idx`` whose gap to the plane is below the margin
     (``margin`` [m], or when negative ``margin_fraction`` × radius). Written from ``start``;
-    returns the count written or needed, like ``_sphere_pairs``."""
+    returns the count written or needed (if it exceeds the buffer, call again with more room)."""
     count = start
     capacity = out_a.shape[0]
     for k in range(idx.shape[0]):

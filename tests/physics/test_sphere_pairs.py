@@ -1,6 +1,7 @@
-"""Sphere–sphere pairs from the grid (``collide._sphere_pairs``) against every pair checked
-by brute force, on both of its paths: the dense grid (spheres packed in a small box) and the
-spatial hash (spheres spread far apart, or one far outlier that makes the box huge)."""
+"""Sphere–sphere pairs (``sphere_pairs.py``) against every pair checked by brute force, on both
+of the grid's paths: dense (spheres packed in a small box) and the spatial hash (spheres spread
+far apart, or one far outlier that makes the box huge); and the pair list kept between steps
+against a fresh search every step."""
 
 from __future__ import annotations
 
