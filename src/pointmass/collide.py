@@ -28,7 +28,7 @@ from .contacts import ContactBuffer, ContactGenerator, friction_value, restituti
 from .forces import _Selection
 from .keys import plane_key_base, plane_serial
 from .particles import Particles
-from .sphere_pairs import PairList, _contacts, sweep_lengths
+from .sphere_pairs import PairList, pair_contacts, sweep_lengths
 
 #: Default contact margin, as a fraction of each particle's radius (see the module docstring).
 #: Fast pairs are found by their sweep (|v|·dt) whatever the margin; the margin only has to
@@ -252,8 +252,8 @@ class SphereCollisions(ContactGenerator):
         start = contacts.count
         contacts.reserve(lo.shape[0])
         a, b, n, pen, rest = contacts.raw()
-        contacts.count = _contacts(particles.position, particles.velocity, radius,
-                                   particles.inv_mass, lo, hi, self._restitution, margin,
-                                   DEFAULT_MARGIN_FRACTION, sweep, float(contacts.dt), a, b, n,
-                                   pen, rest, contacts.raw_key(), start)
+        contacts.count = pair_contacts(particles.position, particles.velocity, radius,
+                                       particles.inv_mass, lo, hi, self._restitution, margin,
+                                       DEFAULT_MARGIN_FRACTION, sweep, float(contacts.dt), a, b,
+                                       n, pen, rest, contacts.raw_key(), start)
         contacts.raw_friction()[start:contacts.count] = self._friction
