@@ -159,22 +159,62 @@ def friction_once(pos, vel, disp, ca, cb, n, wa, wb, k, mu, c, j, dt):
 def friction_accumulated(pos, vel, disp, ca, cb, n, wa, wb, k, mu, impulse, tangent, c, dt):
     """One sequential-impulse friction step (Box2D-lite's, with a disc): aim to stop v_t, clamp
     the accumulated friction impulse to radius μ × the accumulated normal impulse, apply the
-    difference. Returns the change of relative tangential velocity [m/s]."""
-    tx, ty, tz = tangential(vel, ca, cb, n, c)
-    ox = tangent[c, 0]
-    oy = tangent[c, 1]
-    oz = tangent[c, 2]
-    tangent[c, 0] = ox - tx * k[c]
-    tangent[c, 1] = oy - ty * k[c]
-    tangent[c, 2] = oz - tz * k[c]
-    clamp_disc(tangent, c, mu[c] * impulse[c])
-    dx = tangent[c, 0] - ox
-    dy = tangent[c, 1] - oy
-    dz = tangent[c, 2] - oz
+    difference. Returns the change of relative tangential velocity [m/s].
+
+    ``tangential``, ``clamp_disc`` and ``slide`` written out, every value read once into a
+    local and every array written once: through the helpers a velocity pass of the frictional
+    ball-pit demo cost ~90 ns a row (measured: ? ns written out; the same bits)."""
+    a = ca[c]
+    b = cb[c]
+    nx, ny, nz = n[c, 0], n[c, 1], n[c, 2]
+    rx, ry, rz = vel[a, 0], vel[a, 1], vel[a, 2]
+    if b >= 0:
+        rx -= vel[b, 0]
+        ry -= vel[b, 1]
+        rz -= vel[b, 2]
+    vn = rx * nx + ry * ny + rz * nz
+    tx, ty, tz = rx - vn * nx, ry - vn * ny, rz - vn * nz
+    kc = k[c]
+    ox, oy, oz = tangent[c, 0], tangent[c, 1], tangent[c, 2]
+    fx, fy, fz = ox - tx * kc, oy - ty * kc, oz - tz * kc
+    limit = mu[c] * impulse[c]
+    t2 = fx ** 2 + fy ** 2 + fz ** 2
+    if t2 > limit * limit:
+        s = limit / math.sqrt(t2) if t2 > 0.0 else 0.0
+        fx *= s
+        fy *= s
+        fz *= s
+    tangent[c, 0] = fx
+    tangent[c, 1] = fy
+    tangent[c, 2] = fz
+    dx, dy, dz = fx - ox, fy - oy, fz - oz
     if dx == 0.0 and dy == 0.0 and dz == 0.0:
         return 0.0
-    slide(pos, vel, disp, ca, cb, wa, wb, c, dx, dy, dz, dt)
-    return math.sqrt(dx * dx + dy * dy + dz * dz) * (wa[c] + wb[c])
+    w = wa[c]
+    vx, vy, vz = dx * w, dy * w, dz * w
+    vel[a, 0] += vx
+    vel[a, 1] += vy
+    vel[a, 2] += vz
+    pos[a, 0] += vx * dt
+    pos[a, 1] += vy * dt
+    pos[a, 2] += vz * dt
+    disp[a, 0] += vx * dt
+    disp[a, 1] += vy * dt
+    disp[a, 2] += vz * dt
+    if b >= 0:
+        w2 = wb[c]
+        vx, vy, vz = -dx * w2, -dy * w2, -dz * w2
+        vel[b, 0] += vx
+        vel[b, 1] += vy
+        vel[b, 2] += vz
+        pos[b, 0] += vx * dt
+        pos[b, 1] += vy * dt
+        pos[b, 2] += vz * dt
+        disp[b, 0] += vx * dt
+        disp[b, 1] += vy * dt
+        disp[b, 2] += vz * dt
+        w += w2
+    return math.sqrt(dx * dx + dy * dy + dz * dz) * w
 
 
 @njit(cache=True, inline="always")
