@@ -1,20 +1,25 @@
 """Sphere–sphere pairs: a grid finds the candidates, a list keeps them between steps.
 
-**Candidates** (``_candidates``): every pair closer than its radii plus its margin plus a
-*skin*, found on a uniform grid (cell = largest diameter + margin + skin, so a pair's spheres
-are at most one cell apart): dense over the spheres' bounding box when that is small, a spatial
+**Candidates** (``_candidates``): every pair closer than its radii plus its margin plus both
+spheres' *budgets* (below), found on a uniform grid (cell = largest diameter + margin + twice
+the largest budget, so a pair's spheres are at most one cell apart): dense over the spheres' bounding box when that is small, a spatial
 hash when they are spread far apart, so the search costs O(N) for evenly spread spheres instead
 of the O(N²) pair loop of Cyclone's demos.
 
 **The list** (``PairList``; a Verlet list, as molecular dynamics keeps its neighbours): the
 candidates of the last search and the positions it saw. A step needs the pairs closer than their
 radii plus margin plus how far each sphere may travel in the step (its sweep, |v|·dt); since the
-search, a pair has come closer by at most its two spheres' displacements. So the list holds
-every pair a step needs while 2 × (largest displacement) + 2 × (largest sweep) stays within the
-skin, and the grid is searched again only when it does not. Measured on the 10 000-sphere pit
-between 5 and 10 s: a search ~2 ms, checking the listed pairs ~0.55 ms, a search every ~3 steps
-(the pile still flows); the pairs' share of a step 2.5 -> 1.6 ms. (Refreshing only the spheres
-that moved too far would not help there: within 5 steps hundreds of them do.)
+search, a pair has come closer by at most its two spheres' displacements. Each sphere gets a
+budget at the search (its sweep then, plus half the skin) and the list holds the pairs within
+radii + margin + both budgets; it serves while every sphere's displacement plus sweep stays
+within its budget, and the grid is searched again when one does not. Budgets are per sphere so
+that a fast one (a ball in flight) does not widen every pair's reach. A scene whose list is
+searched again every step anyway (a pour: something always falls fast) goes without the skin,
+which would only lengthen the list, and tries it again every few searches. Measured on the
+10 000-sphere pit between 5 and 10 s: a search ~2 ms, checking the listed pairs ~0.55 ms, a
+search every ~3 steps (the pile still flows); the pairs' share of a step 2.5 -> 1.6 ms.
+(Refreshing only the spheres that moved too far would not help there: within 5 steps hundreds
+of them do.)
 
 **Contacts** (``pair_contacts``): each step checks every listed pair exactly and writes the
 contacts in key order (lower index, then higher). So the contacts are the same whether the list
@@ -34,6 +39,9 @@ from .keys import pair_key
 #: The list's skin beyond what the sweeps need at the search, as a fraction of the largest
 #: radius: the room spheres have to move before the grid is searched again.
 SKIN_FRACTION = 0.2
+#: While every list is searched again at its next step, searches go without the skin; every
+#: this many such searches the skin is tried again.
+SKIN_RETRY = 8
 
 #: The grid is dense (a slot for every cell of the spheres' bounding box, so the three cells
 #: along z next to a cell are one run of the sorted spheres) when the box has at most this many
@@ -144,9 +152,10 @@ def _margin_of(ri, rj, margin, margin_fraction):
 
 
 @njit(cache=True, nogil=True)
-def _candidates(pos, radius, idx, count, cell_size, margin, margin_fraction, skin):
-    """The pairs of ``idx`` closer than their radii + margin + ``skin``, as (lo, hi) index
-    arrays in key order; ``count`` is the number of particles (the keys' range).
+def _candidates(pos, radius, idx, count, cell_size, margin, margin_fraction, budget):
+    """The pairs of ``idx`` closer than their radii + margin + both spheres' ``budget`` (n,)
+    [m], as (lo, hi) index arrays in key order; ``count`` is the number of particles (the
+    keys' range).
 
     The spheres are copied in cell order, so a neighbour cell's spheres are read from adjacent
     memory (measured on the settled 10 000-sphere pit, without a skin: 2.3 ms, against 5.5 for
@@ -158,6 +167,7 @@ def _candidates(pos, radius, idx, count, cell_size, margin, margin_fraction, ski
     sj = np.empty(n, np.int64)
     sp = np.empty((n, 3))
     sr = np.empty(n)
+    sb = np.empty(n)
     for s in range(n):
         j = idx[order[s]]
         sj[s] = j
@@ -165,6 +175,7 @@ def _candidates(pos, radius, idx, count, cell_size, margin, margin_fraction, ski
         sp[s, 1] = pos[j, 1]
         sp[s, 2] = pos[j, 2]
         sr[s] = radius[j]
+        sb[s] = budget[order[s]]
     runs = np.empty((14, 5), np.int64)
     lo = np.empty(8 * n + 16, np.int64)
     hi = np.empty(8 * n + 16, np.int64)
@@ -173,6 +184,7 @@ def _candidates(pos, radius, idx, count, cell_size, margin, margin_fraction, ski
         i = idx[k]
         px, py, pz = pos[i, 0], pos[i, 1], pos[i, 2]
         ri = radius[i]
+        bi = budget[k]
         # Own cell (later spheres only) and the 13 "forward" neighbour cells: each pair once.
         for r in range(_neighbour_runs(cells, slot, starts, low, span, k, runs)):
             first, stop = runs[r, 0], runs[r, 1]
@@ -189,7 +201,7 @@ def _candidates(pos, radius, idx, count, cell_size, margin, margin_fraction, ski
                 ddx = px - sp[s, 0]
                 ddy = py - sp[s, 1]
                 ddz = pz - sp[s, 2]
-                reach = ri + sr[s] + _margin_of(ri, sr[s], margin, margin_fraction) + skin
+                reach = ri + sr[s] + _margin_of(ri, sr[s], margin, margin_fraction) + bi + sb[s]
                 # Written always, kept by the count: no branch to mispredict on the ~1 in 5
                 # candidates that are near (the settled pit's search: 2.4 -> 1.7 ms).
                 j = sj[s]
@@ -205,19 +217,18 @@ def _candidates(pos, radius, idx, count, cell_size, margin, margin_fraction, ski
 
 
 @njit(cache=True, nogil=True)
-def _largest_move(pos, idx, seen):
-    """The largest distance [m] a sphere of ``idx`` has moved from ``seen`` (n, 3), or inf if
-    a position is not finite."""
-    largest = 0.0
+def _within_budgets(pos, idx, seen, sweep, budget):
+    """Whether every sphere of ``idx`` has moved from ``seen`` (n, 3) plus may travel in the
+    step (``sweep`` [m] per particle) at most its ``budget`` (n,) [m] (False for a position
+    that is not finite)."""
     for k in range(idx.shape[0]):
         i = idx[k]
         dx = pos[i, 0] - seen[k, 0]
         dy = pos[i, 1] - seen[k, 1]
         dz = pos[i, 2] - seen[k, 2]
-        d2 = dx * dx + dy * dy + dz * dz
-        if not d2 <= largest:  # also catches NaN
-            largest = d2 if d2 == d2 else np.inf
-    return math.sqrt(largest)
+        if not math.sqrt(dx * dx + dy * dy + dz * dz) + sweep[i] <= budget[k]:
+            return False
+    return True
 
 
 @njit(cache=True, nogil=True)
@@ -319,40 +330,51 @@ class PairList:
         self._idx: np.ndarray | None = None
         self._radius = np.zeros(0)
         self._seen = np.zeros((0, 3))
+        self._budget = np.zeros(0)  # how far each sphere may move + travel [m] (see pairs)
         self._margin = (0.0, 0.0)
-        self._room = -1.0  # the displacement + sweep budget the list was built with [m]
+        self._served = SKIN_RETRY  # steps the list has served
+        self._misses = 0  # searches in a row whose list served only its own step
 
     def pairs(self, position, radius, idx, margin: float, margin_fraction: float,
               sweep: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         """The candidate pairs (lo, hi) of the spheres ``idx`` for a step whose spheres may
         travel ``sweep`` [m] each; ``margin`` ≥ 0 [m], or < 0 for ``margin_fraction`` × the
         larger radius of each pair."""
-        travel = 2.0 * float(sweep[idx].max())
-        if self._fits(position, radius, idx, margin, margin_fraction, travel):
+        if self._fits(position, radius, idx, margin, margin_fraction, sweep):
+            self._served += 1
             return self.lo, self.hi
+        # Each sphere's budget: its own sweep now (a fast one does not widen every pair's
+        # reach) plus half the skin. A scene whose list is searched again every step anyway
+        # (a pour: something always falls fast) gets no skin, which would only lengthen the
+        # list, trying it again every ``SKIN_RETRY`` searches.
+        self._misses = self._misses + 1 if self._served <= 1 else 0
         largest = float(radius[idx].max())
-        skin = travel + SKIN_FRACTION * largest
+        skin = SKIN_FRACTION * largest if self._misses % SKIN_RETRY == 0 else 0.0
+        budget = sweep[idx] + 0.5 * skin
         reach = margin if margin >= 0.0 else margin_fraction * largest
-        cell = 2.0 * largest + reach + skin  # a cell holds a pair's whole reach
+        cell = 2.0 * largest + reach + 2.0 * float(budget.max())  # a pair's whole reach
         self.lo, self.hi = _candidates(position, radius, idx, position.shape[0], cell,
-                                       float(margin), float(margin_fraction), skin)
+                                       float(margin), float(margin_fraction), budget)
         self._idx = idx.copy()
         self._radius = radius[idx].copy()
         self._seen = position[idx].copy()
+        # A thousandth kept back for rounding: the distances are computed, not exact, and a
+        # pair right at the list's edge must not be lost to an ulp.
+        self._budget = 0.999 * budget
         self._margin = (float(margin), float(margin_fraction))
-        self._room = skin
+        self._served = 1
         self.searches += 1
         return self.lo, self.hi
 
-    def _fits(self, position, radius, idx, margin, margin_fraction, travel) -> bool:
-        """Whether the list still holds every pair the step can need (same spheres, radii and
-        margin; moved and about to move within the skin)."""
-        if self._idx is None or self._room < 0.0:
+    def _fits(self, position, radius, idx, margin, margin_fraction, sweep) -> bool:
+        """Whether the list still holds every pair the step can need: the same spheres, radii
+        and margin, and each sphere's move since the search plus its sweep within its budget
+        (a pair missing from the list was farther apart than its radii + margin + both
+        budgets, so it cannot now be closer than radii + margin + both sweeps)."""
+        if self._idx is None:
             return False
         if (self._idx.shape != idx.shape or self._margin != (margin, margin_fraction)
                 or not np.array_equal(self._idx, idx)
                 or not np.array_equal(self._radius, radius[idx])):
             return False
-        # A thousandth of the skin kept back for rounding: the distances are computed, not
-        # exact, and a pair right at the list's edge must not be lost to an ulp.
-        return 2.0 * _largest_move(position, idx, self._seen) + travel <= 0.999 * self._room
+        return _within_budgets(position, idx, self._seen, sweep, self._budget)
