@@ -2,9 +2,9 @@
 
 **Candidates** (``_candidates``): every pair closer than its radii plus its margin plus both
 spheres' *budgets* (below), found on a uniform grid (cell = largest diameter + margin + twice
-the largest budget, so a pair's spheres are at most one cell apart): dense over the spheres' bounding box when that is small, a spatial
-hash when they are spread far apart, so the search costs O(N) for evenly spread spheres instead
-of the O(N²) pair loop of Cyclone's demos.
+the largest budget, so a pair's spheres are at most one cell apart): dense over the spheres'
+bounding box when that is small, a spatial hash when they are spread far apart, so the search
+costs O(N) for evenly spread spheres instead of the O(N²) pair loop of Cyclone's demos.
 
 **The list** (``PairList``; a Verlet list, as molecular dynamics keeps its neighbours): the
 candidates of the last search and the positions it saw. A step needs the pairs closer than their
