@@ -55,40 +55,42 @@ def _velocity_rows_for(friction: bool):
                 if r >= hi:
                     break
                 c = r if rows is None else rows[r]
-                change = 0.0
+                # Branch-free (kernels.relative and push written out, see the module
+                # docstring): the impulse and velocities are stored even when the step is 0,
+                # since whether it is changes from row to row and the processor guessed wrong
+                # (measured on the settled 10 000-sphere pit: a pass 0.41 -> 0.26 ms, the same
+                # bits). A row between two immovable ends has k = 0, so a step of 0.
                 kc = k[c]
-                if kc != 0.0:
-                    a = ca[c]  # kernels.relative and push written out (see the module docstring)
-                    b = cb[c]
-                    nx, ny, nz = n[c, 0], n[c, 1], n[c, 2]
-                    ax, ay, az = vel[a, 0], vel[a, 1], vel[a, 2]
+                a = ca[c]
+                b = cb[c]
+                nx, ny, nz = n[c, 0], n[c, 1], n[c, 2]
+                ax, ay, az = vel[a, 0], vel[a, 1], vel[a, 2]
+                if b >= 0:
+                    bx, by, bz = vel[b, 0], vel[b, 1], vel[b, 2]
+                    vs = (ax - bx) * nx + (ay - by) * ny + (az - bz) * nz
+                else:
                     bx = by = bz = 0.0
-                    if b >= 0:
-                        bx, by, bz = vel[b, 0], vel[b, 1], vel[b, 2]
-                        vs = (ax - bx) * nx + (ay - by) * ny + (az - bz) * nz
-                    else:
-                        vs = ax * nx + ay * ny + az * nz
-                    old = impulse[c]
-                    total = old + (target[c] - vs) * kc
-                    if total < 0.0 and not bil[c]:
-                        total = 0.0  # contacts push, never pull (a rod does both: it is bilateral)
-                    step = total - old
-                    if step != 0.0:
-                        impulse[c] = total
-                        w = wa[c]
-                        vel[a, 0] = ax + nx * step * w
-                        vel[a, 1] = ay + ny * step * w
-                        vel[a, 2] = az + nz * step * w
-                        if b >= 0:
-                            w = wb[c]
-                            vel[b, 0] = bx - nx * step * w
-                            vel[b, 1] = by - ny * step * w
-                            vel[b, 2] = bz - nz * step * w
-                        change = abs(step) / kc
-                        used += 1
-                    if friction and mu[c] > 0.0:
-                        change = max(change, friction_accumulated(pos, vel, disp, ca, cb, n, wa, wb,
-                                                                  k, mu, impulse, tangent, c, dt))
+                    vs = ax * nx + ay * ny + az * nz
+                old = impulse[c]
+                total = old + (target[c] - vs) * kc
+                # Contacts push, never pull (a rod does both: it is bilateral).
+                total = total if bil[c] else max(total, 0.0)
+                step = total - old
+                impulse[c] = total
+                w = wa[c]
+                vel[a, 0] = ax + nx * step * w
+                vel[a, 1] = ay + ny * step * w
+                vel[a, 2] = az + nz * step * w
+                w_b = wb[c]
+                if b >= 0:
+                    vel[b, 0] = bx - nx * step * w_b
+                    vel[b, 1] = by - ny * step * w_b
+                    vel[b, 2] = bz - nz * step * w_b
+                change = abs(step) * (w + w_b)  # the row's change of velocity [m/s]
+                used += step != 0.0
+                if friction and mu[c] > 0.0 and kc != 0.0:
+                    change = max(change, friction_accumulated(pos, vel, disp, ca, cb, n, wa, wb,
+                                                              k, mu, impulse, tangent, c, dt))
                 largest = max(largest, change)
         return largest, used
 
