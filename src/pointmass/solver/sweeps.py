@@ -10,6 +10,7 @@ arrays costs ~5× per contact visit even inlined (measured here: 505 against 148
 
 from __future__ import annotations
 
+import numpy as np
 from numba import njit
 
 from .kernels import PENETRATION_EPSILON, friction_accumulated, relative
@@ -54,23 +55,29 @@ def _velocity_rows_for(friction: bool):
                 r = lo + i + s * run
                 if r >= hi:
                     break
-                c = r if rows is None else rows[r]
+                # The row as an unsigned index: numba wraps negative indices around, and with
+                # ``lo`` unknown it could not prove r ≥ 0 (15 % of a pass; the same bits).
+                c = np.uint64(r if rows is None else rows[r])
                 # Branch-free (kernels.relative and push written out, see the module
-                # docstring): the impulse and velocities are stored even when the step is 0,
-                # since whether it is changes from row to row and the processor guessed wrong
-                # (measured on the settled 10 000-sphere pit: a pass 0.41 -> 0.26 ms, the same
-                # bits). A row between two immovable ends has k = 0, so a step of 0.
+                # docstring): whether a row's impulse changes, and whether its b is scenery,
+                # change from row to row, and the processor guessed wrong (measured on the
+                # settled 10 000-sphere pit: a pass 0.41 -> 0.26 ms, the same bits). So the
+                # impulse and both velocities are stored whatever the step, and a row with
+                # scenery reads and writes back particle a in b's place, with b's velocity
+                # taken as 0 and its inverse mass 0 (b first, so a's new velocity is kept).
+                # A row between two immovable ends has k = 0, so a step of 0.
                 kc = k[c]
                 a = ca[c]
                 b = cb[c]
+                scenery = b < 0
+                other = a if scenery else b
                 nx, ny, nz = n[c, 0], n[c, 1], n[c, 2]
                 ax, ay, az = vel[a, 0], vel[a, 1], vel[a, 2]
-                if b >= 0:
-                    bx, by, bz = vel[b, 0], vel[b, 1], vel[b, 2]
-                    vs = (ax - bx) * nx + (ay - by) * ny + (az - bz) * nz
-                else:
-                    bx = by = bz = 0.0
-                    vs = ax * nx + ay * ny + az * nz
+                ox, oy, oz = vel[other, 0], vel[other, 1], vel[other, 2]
+                bx = 0.0 if scenery else ox
+                by = 0.0 if scenery else oy
+                bz = 0.0 if scenery else oz
+                vs = (ax - bx) * nx + (ay - by) * ny + (az - bz) * nz
                 old = impulse[c]
                 total = old + (target[c] - vs) * kc
                 # Contacts push, never pull (a rod does both: it is bilateral).
@@ -78,14 +85,13 @@ def _velocity_rows_for(friction: bool):
                 step = total - old
                 impulse[c] = total
                 w = wa[c]
+                w_b = wb[c]
+                vel[other, 0] = ox - nx * step * w_b
+                vel[other, 1] = oy - ny * step * w_b
+                vel[other, 2] = oz - nz * step * w_b
                 vel[a, 0] = ax + nx * step * w
                 vel[a, 1] = ay + ny * step * w
                 vel[a, 2] = az + nz * step * w
-                w_b = wb[c]
-                if b >= 0:
-                    vel[b, 0] = bx - nx * step * w_b
-                    vel[b, 1] = by - ny * step * w_b
-                    vel[b, 2] = bz - nz * step * w_b
                 change = abs(step) * (w + w_b)  # the row's change of velocity [m/s]
                 used += step != 0.0
                 if friction and mu[c] > 0.0 and kc != 0.0:
