@@ -97,5 +97,4 @@ def project_positions(bod, con, depths: np.ndarray) -> None:
     a_mat = (jac * w) @ jac.T
     mu = solve_lcp(a_mat, -depths, depths > 0, np.asarray(con.bil))
     dx = (w * (jac.T @ mu)).reshape(-1, 3)
-    bod.pos[particles] += dx
     bod.disp[particles] += dx

@@ -131,7 +131,7 @@ class Solver:
             history.clear()
             return SolveStats()
         p = particles
-        bod = Bodies(p.position, p.velocity, p.acceleration, p.inv_mass, np.zeros((p.count, 3)))
+        bod = Bodies(p.velocity, p.acceleration, p.inv_mass, np.zeros((p.count, 3)))
         con = ContactSet(contacts.a, contacts.b, contacts.normal, contacts.penetration.copy(),
                          contacts.restitution, contacts.friction, contacts.bilateral,
                          np.empty(m), np.empty(m),
@@ -146,6 +146,8 @@ class Solver:
         else:
             stats = self._sequential(p, bod, con, contacts, history, dt)
         stages.current_depths(bod, con, contacts.penetration)
+        position = p.position
+        position += bod.disp  # every stage moved ``disp`` only (see ``kernels.Bodies``)
         return stats
 
     def solve_bodies(self, bodies, contacts, acceleration: np.ndarray, history: ImpulseHistory,
@@ -172,14 +174,13 @@ class Solver:
         impact_passes, hits = stages.impacts(bod, con, dt, threshold, IMPACT_TOLERANCE,
                                              MAX_IMPACT_PASSES)
         passes = MAX_VELOCITY_PASSES if self.max_passes is None else int(self.max_passes)
-        before = (p.kinetic_energy(), p.velocity.copy(), p.position.copy(), bod.disp.copy())
+        before = (p.kinetic_energy(), p.velocity.copy(), bod.disp.copy())
         stages.warm_start(bod, con, dt)
         velocity_passes, used = self._velocities(bod, con, dt, passes, blocks)
         cold = p.kinetic_energy() > before[0] * (1.0 + 1e-9) + 1e-15
         if cold:  # the warm start added energy that the passes did not take back: redo cold
             p.velocity[:] = before[1]
-            p.position[:] = before[2]
-            bod.disp[:] = before[3]
+            bod.disp[:] = before[2]
             con.impulse[:] = 0.0
             con.tangent[:] = 0.0
             more, used2 = self._velocities(bod, con, dt, passes, blocks)

@@ -84,7 +84,7 @@ def impacts(bod, con, dt, threshold, tolerance, max_passes):
     Returns (passes, resolutions)."""
     ca, cb, n, depth0, e, mu = con.a, con.b, con.n, con.depth0, con.e, con.mu
     wa, wb, k, acc_sep, pressed = con.wa, con.wb, con.k, con.acc_sep, con.impulse
-    pos, vel, disp = bod.pos, bod.vel, bod.disp
+    vel, disp = bod.vel, bod.disp
     hit_in = np.zeros(vel.shape[0], np.int64)  # the last pass that changed each particle
     # The rows that may collide (not pressed, not immovable), found by the first pass: the
     # later ones visit only these, in the same order (the settled 10 000-sphere pit: ~4 900 of
@@ -119,7 +119,7 @@ def impacts(bod, con, dt, threshold, tolerance, max_passes):
                 if b >= 0:
                     vel[b, i] -= n[c, i] * j * wb[c]
             if mu[c] > 0.0:
-                friction_once(pos, vel, disp, ca, cb, n, wa, wb, k, mu, c, j, dt)
+                friction_once(vel, disp, ca, cb, n, wa, wb, k, mu, c, j, dt)
             hit_in[a] = passes
             if b >= 0:
                 hit_in[b] = passes
@@ -137,7 +137,7 @@ def warm_start(bod, con, dt):
     contact plane and friction disc), so a resting pile starts out solved."""
     ca, cb, n, mu, wa, wb = con.a, con.b, con.n, con.mu, con.wa, con.wb
     impulse, t = con.impulse, con.tangent
-    pos, vel, disp = bod.pos, bod.vel, bod.disp
+    vel, disp = bod.vel, bod.disp
     for c in range(ca.shape[0]):
         # kernels.push written out, without branches, as in ``sweeps.velocity_rows``: a row
         # with scenery writes particle a back in b's place, with b's inverse mass 0 (the
@@ -163,7 +163,7 @@ def warm_start(bod, con, dt):
                 for i in range(3):
                     t[c, i] -= tn * n[c, i]
                 clamp_disc(t, c, mu[c] * j)
-                slide(pos, vel, disp, ca, cb, wa, wb, c, t[c, 0], t[c, 1], t[c, 2], dt)
+                slide(vel, disp, ca, cb, wa, wb, c, t[c, 0], t[c, 1], t[c, 2], dt)
             else:  # friction switched off since: nothing to warm start
                 t[c, 0] = 0.0
                 t[c, 1] = 0.0
@@ -197,7 +197,7 @@ def follow_impulses(bod, con, dt):
     lift again, through the whole pile (measured: a 10 000-sphere pit never converged in 15
     projection passes). Box2D solves velocities, then integrates; this is the same order."""
     ca, cb, n, wa, wb, impulse = con.a, con.b, con.n, con.wa, con.wb, con.impulse
-    pos, disp = bod.pos, bod.disp
+    disp = bod.disp
     for c in range(ca.shape[0]):
         # Written out, with no branch on j = 0 (a row without impulse moves nothing): the
         # settled 10 000-sphere pit 0.21 -> 0.17 ms, the same bits.
@@ -206,22 +206,14 @@ def follow_impulses(bod, con, dt):
         b = cb[c]
         nx, ny, nz = n[c, 0], n[c, 1], n[c, 2]
         w = wa[c]
-        mx, my, mz = nx * j * w, ny * j * w, nz * j * w
-        pos[a, 0] += mx
-        pos[a, 1] += my
-        pos[a, 2] += mz
-        disp[a, 0] += mx
-        disp[a, 1] += my
-        disp[a, 2] += mz
+        disp[a, 0] += nx * j * w
+        disp[a, 1] += ny * j * w
+        disp[a, 2] += nz * j * w
         if b >= 0:
             w = wb[c]
-            mx, my, mz = -nx * j * w, -ny * j * w, -nz * j * w
-            pos[b, 0] += mx
-            pos[b, 1] += my
-            pos[b, 2] += mz
-            disp[b, 0] += mx
-            disp[b, 1] += my
-            disp[b, 2] += mz
+            disp[b, 0] -= nx * j * w
+            disp[b, 1] -= ny * j * w
+            disp[b, 2] -= nz * j * w
 
 
 @njit(cache=True, nogil=True)
@@ -259,7 +251,7 @@ def worst_first(bod, con, dt, threshold, iterations):
     once, then remove that contact's penetration. Returns the resolutions made."""
     ca, cb, n, depth0, e, mu = con.a, con.b, con.n, con.depth0, con.e, con.mu
     wa, wb, k, acc_sep, bil = con.wa, con.wb, con.k, con.acc_sep, con.bil
-    pos, vel, disp = bod.pos, bod.vel, bod.disp
+    vel, disp = bod.vel, bod.disp
     used = 0
     while used < iterations:
         worst = -1
@@ -285,9 +277,9 @@ def worst_first(bod, con, dt, threshold, iterations):
         if closing_within_step(vs, d, dt):
             j = (bounce_target(vs, acc_sep[c], e[c], threshold) - vs) * k[c]
             push(vel, ca, cb, n, wa, wb, c, j)
-            friction_once(pos, vel, disp, ca, cb, n, wa, wb, k, mu, c, j, dt)
+            friction_once(vel, disp, ca, cb, n, wa, wb, k, mu, c, j, dt)
         elif bil[c] and vs > VELOCITY_EPSILON and -d + vs * dt > 0.0:
             push(vel, ca, cb, n, wa, wb, c, -vs * k[c])  # a rod closing up: stop it
-        project(pos, disp, ca, cb, n, depth0, bil, wa, wb, k, c)
+        project(disp, ca, cb, n, depth0, bil, wa, wb, k, c)
         used += 1
     return used

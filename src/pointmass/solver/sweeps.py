@@ -45,7 +45,7 @@ def _velocity_rows_for(friction: bool):
     def rows_kernel(bod, con, rows, lo, hi, dt):
         ca, cb, n, mu, wa, wb, k = con.a, con.b, con.n, con.mu, con.wa, con.wb, con.k
         target, impulse, tangent, bil = con.target, con.impulse, con.tangent, con.bil
-        pos, vel, disp = bod.pos, bod.vel, bod.disp
+        vel, disp = bod.vel, bod.disp
         largest = 0.0
         used = 0
         streams = STREAMS if hi - lo >= STREAMS_MIN_ROWS else 1
@@ -95,8 +95,8 @@ def _velocity_rows_for(friction: bool):
                 change = abs(step) * (w + w_b)  # the row's change of velocity [m/s]
                 used += step != 0.0
                 if friction and mu[c] > 0.0 and kc != 0.0:
-                    change = max(change, friction_accumulated(pos, vel, disp, ca, cb, n, wa, wb,
-                                                              k, mu, impulse, tangent, c, dt))
+                    change = max(change, friction_accumulated(vel, disp, ca, cb, n, wa, wb, k,
+                                                              mu, impulse, tangent, c, dt))
                 largest = max(largest, change)
         return largest, used
 
@@ -128,7 +128,7 @@ def projection_rows(bod, con, rows, lo, hi):
     only. Returns the largest depth found [m]."""
     ca, cb, n, depth0, wa, wb, k = con.a, con.b, con.n, con.depth0, con.wa, con.wb, con.k
     bil = con.bil
-    pos, disp = bod.pos, bod.disp
+    disp = bod.disp
     largest = 0.0
     for r in range(lo, hi):
         c = r if rows is None else rows[r]
@@ -140,12 +140,8 @@ def projection_rows(bod, con, rows, lo, hi):
             a = ca[c]
             b = cb[c]
             for i in range(3):
-                move = n[c, i] * share * wa[c]
-                pos[a, i] += move
-                disp[a, i] += move
+                disp[a, i] += n[c, i] * share * wa[c]
                 if b >= 0:
-                    move = -n[c, i] * share * wb[c]
-                    pos[b, i] += move
-                    disp[b, i] += move
+                    disp[b, i] -= n[c, i] * share * wb[c]
     return largest
 
