@@ -104,6 +104,17 @@ def _sort_by_recalled_rows(keys, rows, old_keys, order):
 
 
 @njit(cache=True, nogil=True)
+def _in_order(order, keys, normal, sorted_keys, sorted_normal, rank):
+    """sorted_keys[r] = keys[order[r]], the same for ``normal``, and rank[order[r]] = r, in
+    one pass (numpy's three indexings: 0.24 ms on the settled pit's 33 000 contacts)."""
+    for r in range(order.shape[0]):
+        c = order[r]
+        sorted_keys[r] = keys[c]
+        sorted_normal[r] = normal[c]
+        rank[c] = r
+
+
+@njit(cache=True, nogil=True)
 def _is_sorted(keys):
     for c in range(1, keys.shape[0]):
         if keys[c] <= keys[c - 1]:
@@ -204,19 +215,15 @@ class ImpulseHistory:
                 self._recalled = self._recalled[keyed]  # the rows of the keys kept
         if _is_sorted(keys):
             order = np.arange(keys.shape[0])
-            keys, normal = keys.copy(), normal.copy()
-            tangent = tangent.copy() if tangent is not None else None
         else:
             order = np.empty(keys.shape[0], np.int64)
             recalled = self._recalled
             if recalled is None or not _sort_by_recalled_rows(keys, recalled, self._keys, order):
                 order = np.argsort(keys, kind="stable")  # a few sorted runs: timsort is fast
-            keys, normal = keys[order], normal[order]
-            tangent = tangent[order] if tangent is not None else None
         self._recalled = None
         self._order = order
         self._rank = np.empty_like(order)
-        self._rank[order] = np.arange(order.shape[0])
-        self._keys = keys
-        self._normal = normal
-        self._tangent = tangent
+        self._keys = np.empty_like(keys)
+        self._normal = np.empty_like(normal)
+        _in_order(order, keys, normal, self._keys, self._normal, self._rank)
+        self._tangent = tangent[order] if tangent is not None else None
