@@ -39,11 +39,12 @@ from .keys import pair_key
 #: The list's skin beyond what the sweeps need at the search, as a fraction of the largest
 #: radius: the room spheres have to move before the grid is searched again.
 SKIN_FRACTION = 0.2
-#: ... and each sphere may travel this many steps at its speed of the search: one whose
-#: budget is its sweep of one step has used it up after a few steps of steady motion, and the
-#: whole list is searched again (measured on the settled 10 000-sphere pit, steps 300-600:
-#: 317 searches with 1, 185 with 3, 120 with 6; the pairs stage 2.2-2.7 -> 1.7-2.2 ms a step
-#: with 3 or 6, 3 kept for the cell size, which grows with the fastest sphere's budget).
+#: ... and each sphere may travel this many steps at its speed of the search, the steps after
+#: the first within another half skin: one whose budget is its sweep of one step has used it
+#: up after a few steps of steady motion, and the whole list is searched again (measured on
+#: the settled 10 000-sphere pit, steps 300-600: 317 searches with 1, 185 with 3, 120 with 6;
+#: the pairs stage 2.2-2.7 -> 1.7-2.2 ms a step with 3 or 6). The cap keeps a fast ball from
+#: widening the grid's cells, which the fastest sphere's budget sets for all (a pour).
 SKIN_STEPS = 3
 #: While every list is searched again at its next step, searches go without the skin; every
 #: this many such searches the skin is tried again.
@@ -356,8 +357,10 @@ class PairList:
         self._misses = self._misses + 1 if self._served <= 1 else 0
         largest = float(radius[idx].max())
         skin = SKIN_FRACTION * largest if self._misses % SKIN_RETRY == 0 else 0.0
-        steps = SKIN_STEPS if skin > 0.0 else 1
-        budget = steps * sweep[idx] + 0.5 * skin
+        own = sweep[idx]
+        budget = own
+        if skin > 0.0:  # the travel of the steps after this one, at most another half skin
+            budget = own + np.minimum((SKIN_STEPS - 1) * own, 0.5 * skin) + 0.5 * skin
         reach = margin if margin >= 0.0 else margin_fraction * largest
         cell = 2.0 * largest + reach + 2.0 * float(budget.max())  # a pair's whole reach
         self.lo, self.hi = _candidates(position, radius, idx, position.shape[0], cell,
