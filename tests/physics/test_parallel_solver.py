@@ -4,6 +4,8 @@ number of threads, and a pile as good as the serial sweep's."""
 
 from __future__ import annotations
 
+from contextlib import contextmanager
+
 import numba
 import numpy as np
 import pytest
@@ -48,16 +50,23 @@ def test_random_rows_over_a_wide_scene_mostly_fall_inside_slabs():
     assert overflow == 0 and inside >= 0.9 * a.shape[0]
 
 
-def _pit_run(monkeypatch, threads: int, steps: int) -> tuple:
-    monkeypatch.setattr(solver_module, "PARALLEL_MIN_CONTACTS", 0)
+@contextmanager
+def _numba_threads(threads: int):
+    """numba's thread count set to ``threads`` inside, restored after."""
     saved = numba.get_num_threads()
     try:
         numba.set_num_threads(threads)
+        yield
+    finally:
+        numba.set_num_threads(saved)
+
+
+def _pit_run(monkeypatch, threads: int, steps: int) -> tuple:
+    monkeypatch.setattr(solver_module, "PARALLEL_MIN_CONTACTS", 0)
+    with _numba_threads(threads):
         world = ball_pit(400)
         for _ in range(steps):
             stats = world.step(DT)
-    finally:
-        numba.set_num_threads(saved)
     return world.particles.position.copy(), world.particles.velocity.copy(), stats
 
 
@@ -87,13 +96,9 @@ def test_a_pile_solved_in_parallel_settles_like_the_serial_one(monkeypatch):
     0.1 % of it, and the mean speed (over the last 100 steps) within 50 % of the serial
     sweep's (a different row order converges to the same solution, by another road)."""
     monkeypatch.setattr(solver_module, "PARALLEL_MIN_CONTACTS", 0)
-    saved = numba.get_num_threads()
-    try:
-        numba.set_num_threads(2)
+    with _numba_threads(2):
         parallel = ball_pit(400)
         speed = _settling(parallel, 300)
-    finally:
-        numba.set_num_threads(saved)
     stats = parallel.step(DT)
     assert stats.max_penetration <= 0.01
     assert (parallel.particles.position[:, 1] - 0.5).min() >= -1e-3
