@@ -166,39 +166,22 @@ def friction_once(vel, disp, ca, cb, n, wa, wb, k, mu, c, j, dt):
 
 
 @njit(cache=True, inline="always")
-def friction_accumulated(vel, disp, ca, cb, n, wa, wb, k, mu, impulse, tangent, c, dt):
-    """One sequential-impulse friction step (Box2D-lite's, with a disc): aim to stop v_t, clamp
-    the accumulated friction impulse to radius μ × the accumulated normal impulse, apply the
-    difference. Returns the change of relative tangential velocity [m/s].
+def coulomb_disc(rx, ry, rz, nx, ny, nz, ox, oy, oz, k, limit):
+    """One sequential-impulse friction step (Box2D-lite's, with a disc), on scalars: the
+    accumulated friction impulse (ox, oy, oz) [N·s] less k × the relative tangential velocity
+    of (rx, ry, rz) [m/s] about the normal n (aiming to stop it), scaled into the disc of radius
+    ``limit`` (μ × the accumulated normal impulse). Returns the new accumulated impulse; the
+    caller applies its difference to the old (``sweeps.velocity_rows``).
 
-    ``tangential`` written out and the disc clamped in locals (``clamp_length``), every value
-    read once and the friction impulse stored once, and ``slide`` reading its contact before it
-    stores: a velocity pass of the frictional ball-pit demo cost 93 ns a row through the
-    helpers as they were, ~60 now (the same bits; with ``slide`` written out too, ~8 % less
-    again, not worth a second copy of it)."""
-    a = ca[c]
-    b = cb[c]
-    nx, ny, nz = n[c, 0], n[c, 1], n[c, 2]
-    rx, ry, rz = vel[a, 0], vel[a, 1], vel[a, 2]
-    if b >= 0:
-        rx -= vel[b, 0]
-        ry -= vel[b, 1]
-        rz -= vel[b, 2]
+    The clamp without a branch (the scale computed always, kept where the disc is exceeded,
+    so where it is, t2 > 0): the same values as ``clamp_length``, whose branch flips from row
+    to row in a sliding pile."""
     vn = rx * nx + ry * ny + rz * nz
-    tx, ty, tz = rx - vn * nx, ry - vn * ny, rz - vn * nz
-    kc = k[c]
-    ox, oy, oz = tangent[c, 0], tangent[c, 1], tangent[c, 2]
-    fx, fy, fz = ox - tx * kc, oy - ty * kc, oz - tz * kc
-    fx, fy, fz = clamp_length(fx, fy, fz, mu[c] * impulse[c])
-    tangent[c, 0] = fx
-    tangent[c, 1] = fy
-    tangent[c, 2] = fz
-    dx, dy, dz = fx - ox, fy - oy, fz - oz
-    if dx == 0.0 and dy == 0.0 and dz == 0.0:
-        return 0.0
-    w = wa[c] + wb[c]
-    slide(vel, disp, ca, cb, wa, wb, c, dx, dy, dz, dt)
-    return math.sqrt(dx * dx + dy * dy + dz * dz) * w
+    fx, fy, fz = ox - (rx - vn * nx) * k, oy - (ry - vn * ny) * k, oz - (rz - vn * nz) * k
+    t2 = fx ** 2 + fy ** 2 + fz ** 2
+    over = t2 > limit * limit
+    s = limit / math.sqrt(max(t2, 1e-300))
+    return (fx * s if over else fx), (fy * s if over else fy), (fz * s if over else fz)
 
 
 @njit(cache=True, inline="always")
