@@ -157,6 +157,34 @@ def _pile(mu: float) -> pm.World:
     return world
 
 
+_finite = st.floats(-50.0, 50.0, allow_subnormal=False)
+
+
+@settings(max_examples=300, deadline=None)
+@given(st.tuples(*[_finite] * 3), st.tuples(*[_finite] * 3), st.tuples(*[_finite] * 3),
+       st.floats(0.0, 5.0), st.floats(0.0, 10.0))
+def test_the_branch_free_friction_disc_gives_the_clamp_s_values_bit_for_bit(
+        rel, normal, old, k, limit):
+    """``kernels.coulomb_disc`` (the velocity rows' friction step, clamped without a branch)
+    against the step written with ``clamp_length`` (the branching clamp the warm start uses):
+    the same floats, inside the disc, outside it, on a zero limit and a zero impulse."""
+    from pointmass.solver.kernels import clamp_length, coulomb_disc
+
+    n = np.array(normal)
+    if np.linalg.norm(n) < 1e-3:
+        n = np.array([0.0, 1.0, 0.0])
+    nx, ny, nz = n / np.linalg.norm(n)
+    rx, ry, rz = rel
+    vn = rx * nx + ry * ny + rz * nz
+    fx = old[0] - (rx - vn * nx) * k
+    fy = old[1] - (ry - vn * ny) * k
+    fz = old[2] - (rz - vn * nz) * k
+    expected = clamp_length(fx, fy, fz, limit)
+    got = coulomb_disc(rx, ry, rz, nx, ny, nz, *old, k, limit)
+    assert got == expected
+    assert math.hypot(*got) <= limit * (1 + 1e-12) + 1e-300
+
+
 def test_a_pile_with_friction_never_gains_energy_and_comes_to_rest():
     """Drop 40 spheres into a box with μ = 0.5: total energy never exceeds the start's, and
     after 4 s nothing moves faster than 1 cm/s."""
