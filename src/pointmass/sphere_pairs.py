@@ -10,16 +10,17 @@ costs O(N) for evenly spread spheres instead of the O(N²) pair loop of Cyclone'
 candidates of the last search and the positions it saw. A step needs the pairs closer than their
 radii plus margin plus how far each sphere may travel in the step (its sweep, |v|·dt); since the
 search, a pair has come closer by at most its two spheres' displacements. Each sphere gets a
-budget at the search (its sweep then, plus half the skin) and the list holds the pairs within
-radii + margin + both budgets; it serves while every sphere's displacement plus sweep stays
-within its budget, and the grid is searched again when one does not. Budgets are per sphere so
-that a fast one (a ball in flight) does not widen every pair's reach. A scene whose list is
-searched again every step anyway (a pour: something always falls fast) goes without the skin,
-which would only lengthen the list, and tries it again every few searches. Measured on the
-10 000-sphere pit between 5 and 10 s: a search ~2 ms, checking the listed pairs ~0.55 ms, a
-search every ~3 steps (the pile still flows); the pairs' share of a step 2.5 -> 1.6 ms.
-(Refreshing only the spheres that moved too far would not help there: within 5 steps hundreds
-of them do.)
+budget at the search (its sweep then for ``SKIN_STEPS`` steps, plus half the skin) and the list
+holds the pairs within radii + margin + both budgets; it serves while every sphere's
+displacement plus sweep stays within its budget, and the grid is searched again when one does
+not. Budgets are per sphere so that a fast one (a ball in flight) does not widen every pair's
+reach. A scene whose list is searched again every step anyway (a pour: something always falls
+fast) goes without the skin, which would only lengthen the list, and tries it again every few
+searches. Measured on the 10 000-sphere pit between 5 and 10 s: a search ~2 ms, checking the
+listed pairs ~0.55 ms, a search every ~3 steps (the pile still flows); the pairs' share of a
+step 2.5 -> 1.6 ms. (Searching again only the spheres that used up their budgets was measured
+and not kept: the others' budgets then run out one by one, and in a landing or a pour a thousand
+are late every step; benchmarks/RESULTS.md, session 22.)
 
 **Contacts** (``pair_contacts``): each step checks every listed pair exactly and writes the
 contacts in key order (lower index, then higher). So the contacts are the same whether the list
