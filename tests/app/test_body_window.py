@@ -77,6 +77,9 @@ def _grab_run(open_viewer, *, overlap: bool) -> pm.Probe:
                                    orientation=lambda w: w.bodies.orientation.copy()))
     w = open_viewer(sim, paused=False)
     w.viewer.overlap = overlap
+    # Steps past the frame's wall-clock budget are dropped (slow motion), and a frame that
+    # compiles a kernel runs past it: the trajectory would depend on the machine's timing.
+    w.viewer.physics_budget = None
     press_key(w, "TAB")
     rng = np.random.default_rng(3)
     x = y = 0

@@ -93,15 +93,21 @@ def _settling(world, steps: int) -> float:
 @pytest.mark.slow
 def test_a_pile_solved_in_parallel_settles_like_the_serial_one(monkeypatch):
     """400 spheres, 5 s: overlap ≤ 1 % of the diameter, no sphere below the floor by more than
-    0.1 % of it, and the mean speed (over the last 100 steps) within 50 % of the serial
-    sweep's (a different row order converges to the same solution, by another road)."""
-    monkeypatch.setattr(solver_module, "PARALLEL_MIN_CONTACTS", 0)
-    with _numba_threads(2):
-        parallel = ball_pit(400)
-        speed = _settling(parallel, 300)
-    stats = parallel.step(DT)
-    assert stats.max_penetration <= 0.01
-    assert (parallel.particles.position[:, 1] - 0.5).min() >= -1e-3
-    monkeypatch.setattr(solver_module, "PARALLEL_MIN_CONTACTS", 10**12)
-    reference = _settling(ball_pit(400), 300)
-    assert speed <= 1.5 * reference + 1e-3, (speed, reference)
+    0.1 % of it, and the mean speed (over the last 100 steps, and over three seeds) within
+    50 % of the serial sweep's (a different row order converges to the same solution, by
+    another road). One seed's is not enough: its pile is chaotic, and the serial sweep's
+    alone went 0.107 -> 0.066 m/s on seed 0 with a change of its projection's row order,
+    while over seeds 0-2 the two stayed within 15 % of each other."""
+    speeds = {}
+    for label, least in (("parallel", 0), ("serial", 10**12)):
+        monkeypatch.setattr(solver_module, "PARALLEL_MIN_CONTACTS", least)
+        runs = []
+        for seed in range(3):
+            with _numba_threads(2):
+                world = ball_pit(400, seed)
+                runs.append(_settling(world, 300))
+                stats = world.step(DT)
+            assert stats.max_penetration <= 0.01, (label, seed)
+            assert (world.particles.position[:, 1] - 0.5).min() >= -1e-3, (label, seed)
+        speeds[label] = float(np.mean(runs))
+    assert speeds["parallel"] <= 1.5 * speeds["serial"] + 1e-3, speeds

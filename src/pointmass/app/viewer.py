@@ -91,7 +91,8 @@ class Viewer:
         self.recorder: ViewRecorder | None = None
         self.messages: list[str] = []        # what happened (screenshot paths...), newest last
         self.closed = False
-        #: Seconds of physics one frame may spend before it drops the steps it still owes.
+        #: Seconds of physics one frame may spend before it drops the steps it still owes
+        #: (None: no limit).
         self.physics_budget = 0.05
         #: World settings changed in the panel, re-applied after every reset or rebuild.
         self.world_overrides: dict = {}
