@@ -15,7 +15,7 @@ import math
 import numpy as np
 from numba import njit
 
-from .kernels import PENETRATION_EPSILON, coulomb_disc, relative
+from .kernels import PENETRATION_EPSILON, coulomb_disc
 
 
 @njit(cache=True, inline="always")
@@ -155,23 +155,52 @@ def velocity_rows(bod, con, rows, lo, hi, dt, friction):
 def projection_rows(bod, con, rows, lo, hi):
     """Mass-weighted projection on rows[lo:hi]: move each contact's particles apart along n by
     inverse mass until it no longer penetrates (a rod: until its length is right). Positions
-    only. Returns the largest depth found [m]."""
+    only. Returns the largest depth found [m].
+
+    Visited as the velocity rows are (``STREAMS`` runs in turn) and without branches: whether
+    a row penetrates changes from row to row (~60 % of the settled 10 000-sphere pit's rows
+    do, in no pattern), and the processor guessed wrong. A row that does not penetrate moves
+    its particles by 0. The test is a number multiplied in, not an ``if`` or a conditional
+    expression, which numba compiles to branches (measured on that pile, four passes: 1.79 ms
+    as a branch, 1.98 as conditional expressions, 1.72 multiplied in, 1.23 multiplied in and
+    in two runs; 0.80 / 1.16 ms had no row / every row penetrated: the cost was the branch's
+    guessing)."""
     ca, cb, n, depth0, wa, wb, k = con.a, con.b, con.n, con.depth0, con.wa, con.wb, con.k
     bil = con.bil
     disp = bod.disp
     largest = 0.0
-    for r in range(lo, hi):
-        c = r if rows is None else rows[r]
-        d = depth0[c] - relative(disp, ca, cb, n, c)
-        if k[c] != 0.0 and (d > PENETRATION_EPSILON
-                            or (bil[c] and d < -PENETRATION_EPSILON)):
-            largest = max(largest, abs(d))
-            share = d * k[c]
+    streams = STREAMS if hi - lo >= STREAMS_MIN_ROWS else 1
+    run = (hi - lo + streams - 1) // streams
+    for i in range(run):
+        for s in range(streams):
+            r = lo + i + s * run
+            if r >= hi:
+                break
+            c = np.uint64(r if rows is None else rows[r])  # unsigned: see velocity rows
+            kc = k[c]
             a = ca[c]
             b = cb[c]
-            for i in range(3):
-                disp[a, i] += n[c, i] * share * wa[c]
-                if b >= 0:
-                    disp[b, i] -= n[c, i] * share * wb[c]
+            scenery = b < 0  # scenery: a in b's place, b's displacement 0 (as velocity rows)
+            other = a if scenery else b
+            nx, ny, nz = n[c, 0], n[c, 1], n[c, 2]
+            ax, ay, az = disp[a, 0], disp[a, 1], disp[a, 2]
+            ox, oy, oz = disp[other, 0], disp[other, 1], disp[other, 2]
+            bx = 0.0 if scenery else ox
+            by = 0.0 if scenery else oy
+            bz = 0.0 if scenery else oz
+            d = depth0[c] - ((ax - bx) * nx + (ay - by) * ny + (az - bz) * nz)
+            # 1.0 where the row moves its particles: it penetrates (a rod: or is too short)
+            # and is not between two immovable ends.
+            moves = np.float64((kc != 0.0) & ((d > PENETRATION_EPSILON)
+                                              | (bil[c] & (d < -PENETRATION_EPSILON))))
+            largest = max(largest, abs(d) * moves)
+            share = d * kc * moves
+            w = wa[c]
+            w_b = wb[c]
+            disp[other, 0] = ox - nx * share * w_b
+            disp[other, 1] = oy - ny * share * w_b
+            disp[other, 2] = oz - nz * share * w_b
+            disp[a, 0] = ax + nx * share * w
+            disp[a, 1] = ay + ny * share * w
+            disp[a, 2] = az + nz * share * w
     return largest
-
