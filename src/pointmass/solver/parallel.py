@@ -15,12 +15,13 @@ from .sweeps import has_friction, projection_rows, velocity_rows
 
 
 @njit(cache=True, nogil=True, parallel=True)
-def _velocity_phase(bod, con, order, spans, first, last, dt, friction):
+def _velocity_phase(bod, con, order, spans, first, last, dt, friction, relaxation):
     """The groups first..last-1 of one phase in parallel, each group's rows in order."""
     largest = 0.0
     used = 0
     for g in prange(first, last):
-        change, hits = velocity_rows(bod, con, order, spans[g, 0], spans[g, 1], dt, friction)
+        change, hits = velocity_rows(bod, con, order, spans[g, 0], spans[g, 1], dt, friction,
+                                     relaxation)
         largest = max(largest, change)
         used += hits
     return largest, used
@@ -36,23 +37,25 @@ def _projection_phase(bod, con, order, spans, first, last):
 
 
 @njit(cache=True, nogil=True)
-def solve_velocities(bod, con, order, spans, phases, dt, tolerance, max_passes):
+def solve_velocities(bod, con, order, spans, phases, dt, tolerance, max_passes, relaxation):
     """Sequential-impulse passes phase by phase (``partition.Phases``): the groups of a phase
-    in parallel, a phase of one group serially. Returns (passes, resolutions)."""
+    in parallel, a phase of one group serially; passes after the first over-relaxed by
+    ``relaxation`` (as ``stages.solve_velocities``). Returns (passes, resolutions)."""
     passes = 0
     used = 0
     friction = has_friction(con)
     while passes < max_passes:
         passes += 1
+        omega = 1.0 if passes == 1 else relaxation
         largest = 0.0
         for p in range(phases.shape[0] - 1):
             first, last = phases[p], phases[p + 1]
             if last - first == 1:
                 change, hits = velocity_rows(bod, con, order, spans[first, 0],
-                                             spans[first, 1], dt, friction)
+                                             spans[first, 1], dt, friction, omega)
             elif last > first:
                 change, hits = _velocity_phase(bod, con, order, spans, first, last, dt,
-                                               friction)
+                                               friction, omega)
             else:
                 continue
             largest = max(largest, change)

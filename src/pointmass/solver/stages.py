@@ -175,10 +175,11 @@ def warm_start(bod, con, dt):
 
 
 @njit(cache=True, nogil=True)
-def solve_velocities(bod, con, dt, tolerance, max_passes):
+def solve_velocities(bod, con, dt, tolerance, max_passes, relaxation):
     """Sequential impulses over every contact in row order (``sweeps.velocity_rows``),
     passes until no contact's velocity changes by more than ``tolerance`` [m/s] in a pass,
-    at most ``max_passes``.
+    at most ``max_passes``; passes after the first over-relaxed by ``relaxation`` (the first
+    is plain, so rows that do not interact are solved in it exactly, as without).
 
     Returns (passes, resolutions)."""
     passes = 0
@@ -186,7 +187,8 @@ def solve_velocities(bod, con, dt, tolerance, max_passes):
     friction = has_friction(con)
     while passes < max_passes:
         passes += 1
-        largest, hits = velocity_rows(bod, con, None, 0, con.a.shape[0], dt, friction)
+        largest, hits = velocity_rows(bod, con, None, 0, con.a.shape[0], dt, friction,
+                                      1.0 if passes == 1 else relaxation)
         used += hits
         if largest <= tolerance:
             break
