@@ -7,7 +7,7 @@ import numpy as np
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from pointmass.solver.history import ImpulseHistory
+from pointmass.solver.history import ImpulseHistory, _sort_runs
 
 
 def _kept(history):
@@ -78,3 +78,35 @@ def test_a_key_given_twice_is_sorted_afresh_not_lost():
     history.keep(keys, np.arange(4.0), None)
     assert np.array_equal(history.keys, [2, 4, 8, 8])
     assert np.array_equal(history._normal, [3.0, 1.0, 0.0, 2.0])
+
+
+@settings(max_examples=60, deadline=None)
+@given(st.lists(st.integers(0, 10**6), min_size=1, max_size=400, unique=True),
+       st.integers(1, 8), st.integers(0, 2**32 - 1))
+def test_generators_runs_in_any_order_are_sorted_as_runs(keys, runs, seed):
+    """Each generator emits its contacts in key order, the generators in any order: ``keep``
+    puts the runs in order (``_sort_runs``) and stores what a full sort would. (Runs emitted
+    in descending order stay apart; in another order two may join into one that overlaps a
+    third, and the sort falls back.)"""
+    rng = np.random.default_rng(seed)
+    keys = np.sort(np.array(keys, np.int64))
+    cuts = np.sort(rng.choice(np.arange(1, keys.shape[0] + 1), min(runs, keys.shape[0]),
+                              replace=False))
+    pieces = np.split(keys, cuts[:-1])
+    order = np.empty(keys.shape[0], np.int64)
+    descending = np.concatenate(pieces[::-1])
+    assert _sort_runs(descending, order)
+    assert np.array_equal(descending[order], keys)
+    emitted = np.concatenate([pieces[i] for i in rng.permutation(len(pieces))])
+    if _sort_runs(emitted, order):
+        assert np.array_equal(emitted[order], keys)
+    for given_keys in (descending, emitted):
+        history = ImpulseHistory()
+        history.keep(given_keys, given_keys.astype(float), None)
+        assert np.array_equal(history.keys, keys) and np.array_equal(history._normal, keys)
+
+
+def test_runs_that_interleave_are_not_sorted_as_runs():
+    order = np.empty(6, np.int64)
+    assert not _sort_runs(np.array([1, 5, 9, 2, 6, 10], np.int64), order)
+    assert not _sort_runs(np.array([8, 4, 8, 2], np.int64), order[:4])  # a key twice

@@ -122,6 +122,40 @@ def _is_sorted(keys):
     return True
 
 
+@njit(cache=True, nogil=True)
+def _sort_runs(keys, order):
+    """Fill ``order`` with the permutation that sorts ``keys`` when they are a few ascending
+    runs whose ranges do not overlap — each generator's contacts in key order, the generators
+    in any order (a box's planes, then the sphere pairs): the runs put in the order of their
+    first keys. Returns False (``order`` unusable) where two runs overlap or the keys have
+    more than ``len(keys) // 8 + 8`` runs, for the caller to sort another way."""
+    m = keys.shape[0]
+    limit = m // 8 + 8
+    starts = np.empty(limit + 1, np.int64)
+    runs = 1
+    starts[0] = 0
+    for c in range(1, m):
+        if keys[c] <= keys[c - 1]:
+            if runs == limit:
+                return False
+            starts[runs] = c
+            runs += 1
+    starts[runs] = m
+    firsts = np.empty(runs, np.int64)
+    for r in range(runs):
+        firsts[r] = keys[starts[r]]
+    by_first = np.argsort(firsts)
+    o = 0
+    for q in range(runs):
+        r = by_first[q]
+        if q > 0 and keys[order[o - 1]] >= firsts[r]:
+            return False  # this run begins before the last one ended: they interleave
+        for c in range(starts[r], starts[r + 1]):
+            order[o] = c
+            o += 1
+    return True
+
+
 #: The empty history's arrays, shared (with no element, nothing can be written into them): a
 #: world whose solver clears the history every step (nothing touching) allocates nothing for it.
 _EMPTY_KEYS = np.zeros(0, np.int64)
@@ -216,9 +250,13 @@ class ImpulseHistory:
         if _is_sorted(keys):
             order = np.arange(keys.shape[0])
         else:
+            # Generators' runs in another order (the settled 10 000-sphere pit: 0.16 ms a
+            # step found among the old rows, 0.055 as runs); else found among the old rows.
             order = np.empty(keys.shape[0], np.int64)
             recalled = self._recalled
-            if recalled is None or not _sort_by_recalled_rows(keys, recalled, self._keys, order):
+            if not _sort_runs(keys, order) and (
+                    recalled is None
+                    or not _sort_by_recalled_rows(keys, recalled, self._keys, order)):
                 order = np.argsort(keys, kind="stable")  # a few sorted runs: timsort is fast
         self._recalled = None
         self._order = order
