@@ -39,23 +39,22 @@ def _projection_phase(bod, con, order, spans, first, last):
 @njit(cache=True, nogil=True)
 def solve_velocities(bod, con, order, spans, phases, dt, tolerance, max_passes, relaxation):
     """Sequential-impulse passes phase by phase (``partition.Phases``): the groups of a phase
-    in parallel, a phase of one group serially; passes after the first over-relaxed by
+    in parallel, a phase of one group serially; each row's step over-relaxed by
     ``relaxation`` (as ``stages.solve_velocities``). Returns (passes, resolutions)."""
     passes = 0
     used = 0
     friction = has_friction(con)
     while passes < max_passes:
         passes += 1
-        omega = 1.0 if passes == 1 else relaxation
         largest = 0.0
         for p in range(phases.shape[0] - 1):
             first, last = phases[p], phases[p + 1]
             if last - first == 1:
                 change, hits = velocity_rows(bod, con, order, spans[first, 0],
-                                             spans[first, 1], dt, friction, omega)
+                                             spans[first, 1], dt, friction, relaxation)
             elif last > first:
                 change, hits = _velocity_phase(bod, con, order, spans, first, last, dt,
-                                               friction, omega)
+                                               friction, relaxation)
             else:
                 continue
             largest = max(largest, change)

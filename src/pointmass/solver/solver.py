@@ -19,8 +19,8 @@ loaded links at once:
    monotonically from f(0) = 0, so with targets ≤ 0 it never adds kinetic energy; a warm start
    can (a loaded cable whose direction turned: measured +204 % in one step). So the kinetic
    energy is compared before and after, and a stage that gained energy is redone cold.
-   A set too large for the exact solve is over-relaxed after its first pass
-   (``LARGE_SET_RELAXATION``, ω < 2: each row's step still lowers f, only further).
+   A set too large for the exact solve is over-relaxed (``LARGE_SET_RELAXATION``, ω < 2:
+   each row's step still lowers f, only further).
 5. *project positions* — mass-weighted projection until no penetration exceeds
    ``PROJECTION_TOLERANCE × dt``: positions only, no velocity, so no energy either.
 6. *store impulses* — the sweep's impulses go to the history for the next step.
@@ -65,16 +65,18 @@ MAX_PROJECTION_PASSES = 15
 #: unchanged; the 1000-sphere pile's largest one-step energy rise 0.056 J (its test's bound 0.2).
 MAX_LARGE_PROJECTION_PASSES = 4
 #: Sets too large for the exact solve (more than ``direct.DIRECT_MAX_CONTACTS`` rows) have
-#: their velocity passes after the first over-relaxed by this factor ω (projected successive
-#: over-relaxation: each row steps ω times its own answer, the clamp still applied; ODE's
-#: QuickStep does the same), and at most ``MAX_LARGE_VELOCITY_PASSES`` of them. Gauss–Seidel's
-#: slow tail on a pile is a long-wavelength error, which plain passes shrink a little each;
-#: ω > 1 shrinks it faster. Measured on the pit after 600 steps (N = 1 000, seeds 0-5, mean
-#: speed over the last 100 steps / largest overlap): 15 plain passes 0.052 m/s / 2.1 mm; 10
-#: plain 0.061 / 2.3; 10 at ω = 1.3, 1.5, 1.6, 1.7: 0.066 / 1.1, 0.042 / 0.54, 0.045 / 0.45,
-#: 0.048 / 0.43; 8 at 1.5: 0.048 / 0.86. N = 10 000: 15 plain 0.076 / 1.7, 10 at 1.5 0.065
-#: / 0.68 mm, and a third less time in the passes. The first pass stays plain, so rows that do
-#: not interact are solved exactly in it.
+#: their velocity passes over-relaxed by this factor ω (projected successive over-relaxation:
+#: each row steps ω times its own answer, the clamp still applied; ODE's QuickStep does the
+#: same), and at most ``MAX_LARGE_VELOCITY_PASSES`` of them. Gauss–Seidel's slow tail on a
+#: pile is a long-wavelength error, which plain passes shrink a little each; ω > 1 shrinks it
+#: faster. Measured on the pit after 600 steps (N = 1 000, seeds 0-5, mean speed over the last
+#: 100 steps / largest overlap): 15 plain passes 0.052 m/s / 2.1 mm; 10 plain 0.061 / 2.3; 10
+#: at ω = 1.3, 1.5, 1.6, 1.7: 0.066 / 1.1, 0.042 / 0.54, 0.045 / 0.45, 0.048 / 0.43; 8 at 1.5:
+#: 0.048 / 0.86. Seeds 0-15, mean speed over steps 400-600: 15 plain 0.063 ± 0.003, 10 at 1.5
+#: 0.056 ± 0.004 (the first pass left plain: 0.065 ± 0.004); largest overlap 2.1 / 0.9 mm.
+#: N = 10 000: 15 plain 0.076 / 1.7, 10 at 1.5 0.065 / 0.68 mm, and a third less time in the
+#: passes. A row with nothing else on its particles takes (1 - ω)^k of its error after k
+#: passes (0.1 % after 10) where plain passes solve it in one.
 LARGE_SET_RELAXATION = 1.5
 MAX_LARGE_VELOCITY_PASSES = 10
 #: A small contact set still unconverged after this many passes gets the exact solve.

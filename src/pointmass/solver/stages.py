@@ -176,8 +176,7 @@ def warm_start(bod, con, dt):
 def solve_velocities(bod, con, dt, tolerance, max_passes, relaxation):
     """Sequential impulses over every contact in row order (``sweeps.velocity_rows``),
     passes until no contact's velocity changes by more than ``tolerance`` [m/s] in a pass,
-    at most ``max_passes``; passes after the first over-relaxed by ``relaxation`` (the first
-    is plain, so rows that do not interact are solved in it exactly, as without).
+    at most ``max_passes``; each row's step over-relaxed by ``relaxation`` (1: plain).
 
     Returns (passes, resolutions)."""
     passes = 0
@@ -186,7 +185,7 @@ def solve_velocities(bod, con, dt, tolerance, max_passes, relaxation):
     while passes < max_passes:
         passes += 1
         largest, hits = velocity_rows(bod, con, None, 0, con.a.shape[0], dt, friction,
-                                      1.0 if passes == 1 else relaxation)
+                                      relaxation)
         used += hits
         if largest <= tolerance:
             break
