@@ -38,6 +38,22 @@ STREAMS = 2
 STREAMS_MIN_ROWS = 256
 
 
+@njit(cache=True, inline="always")
+def _interleaved(lo, hi):
+    """(runs, rows per run) for visiting rows lo..hi-1 ``STREAMS`` runs in turn: pass i visits
+    row lo + i + s·run of each run s that has it."""
+    streams = STREAMS if hi - lo >= STREAMS_MIN_ROWS else 1
+    return streams, (hi - lo + streams - 1) // streams
+
+
+@njit(cache=True, inline="always")
+def _row(rows, r):
+    """The contact of row r: ``rows[r]``, or r itself when ``rows`` is None; unsigned, since
+    numba wraps negative indices around and with ``lo`` unknown it could not prove r ≥ 0 (15 %
+    of a velocity pass; the same bits)."""
+    return np.uint64(r if rows is None else rows[r])
+
+
 def _velocity_rows_for(friction: bool):
     """``velocity_rows`` compiled for sets with friction or without: ``friction`` is a
     constant of the closure, so a frictionless set's loop has no friction branch at all
@@ -50,16 +66,13 @@ def _velocity_rows_for(friction: bool):
         vel, disp = bod.vel, bod.disp
         largest = 0.0
         used = 0
-        streams = STREAMS if hi - lo >= STREAMS_MIN_ROWS else 1
-        run = (hi - lo + streams - 1) // streams
+        streams, run = _interleaved(lo, hi)
         for i in range(run):
             for s in range(streams):
                 r = lo + i + s * run
                 if r >= hi:
                     break
-                # The row as an unsigned index: numba wraps negative indices around, and with
-                # ``lo`` unknown it could not prove r ≥ 0 (15 % of a pass; the same bits).
-                c = np.uint64(r if rows is None else rows[r])
+                c = _row(rows, r)
                 # Branch-free (kernels.relative and push written out, see the module
                 # docstring): whether a row's impulse changes, and whether its b is scenery,
                 # change from row to row, and the processor guessed wrong (measured on the
@@ -175,14 +188,13 @@ def projection_rows(bod, con, rows, lo, hi):
     bil = con.bil
     disp = bod.disp
     largest = 0.0
-    streams = STREAMS if hi - lo >= STREAMS_MIN_ROWS else 1
-    run = (hi - lo + streams - 1) // streams
+    streams, run = _interleaved(lo, hi)
     for i in range(run):
         for s in range(streams):
             r = lo + i + s * run
             if r >= hi:
                 break
-            c = np.uint64(r if rows is None else rows[r])  # unsigned: see velocity rows
+            c = _row(rows, r)
             kc = k[c]
             a = ca[c]
             b = cb[c]
