@@ -110,3 +110,4 @@ def test_runs_that_interleave_are_not_sorted_as_runs():
     order = np.empty(6, np.int64)
     assert not _sort_runs(np.array([1, 5, 9, 2, 6, 10], np.int64), order)
     assert not _sort_runs(np.array([8, 4, 8, 2], np.int64), order[:4])  # a key twice
+    assert _sort_runs(np.zeros(0, np.int64), order[:0])  # nothing to sort

@@ -130,6 +130,8 @@ def _sort_runs(keys, order):
     first keys. Returns False (``order`` unusable) where two runs overlap or the keys have
     more than ``len(keys) // 8 + 8`` runs, for the caller to sort another way."""
     m = keys.shape[0]
+    if m == 0:
+        return True
     limit = m // 8 + 8
     starts = np.empty(limit + 1, np.int64)
     runs = 1

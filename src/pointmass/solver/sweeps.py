@@ -40,8 +40,8 @@ STREAMS_MIN_ROWS = 256
 
 @njit(cache=True, inline="always")
 def _interleaved(lo, hi):
-    """(runs, rows per run) for visiting rows lo..hi-1 ``STREAMS`` runs in turn: pass i visits
-    row lo + i + s·run of each run s that has it."""
+    """(runs, rows per run) for visiting rows lo..hi-1 ``STREAMS`` runs in turn: round i
+    visits row lo + i + s·run of each run s that has it."""
     streams = STREAMS if hi - lo >= STREAMS_MIN_ROWS else 1
     return streams, (hi - lo + streams - 1) // streams
 
