@@ -10,7 +10,7 @@ import pytest
 
 import pointmass as pm
 from pointmass.collide import DEFAULT_MARGIN_FRACTION
-from pointmass.sphere_pairs import DENSE_CELLS_PER_SPHERE
+from pointmass.sphere_pairs import DENSE_CELLS_PER_SPHERE, SLOW_QUANTILE, _candidates
 
 
 def _brute_force(position, radius):
@@ -136,3 +136,36 @@ def test_a_sphere_grown_by_hand_is_found_at_once():
     world.particles.radius[1] = 1.2
     world.step(1 / 60)
     assert world.contacts.count == 1
+
+
+@pytest.mark.parametrize("kind", ["packed", "spread", "outlier"])
+@pytest.mark.parametrize("seed", [0, 1, 2, 3])
+def test_fast_spheres_search_around_themselves_and_no_pair_is_lost_or_doubled(kind, seed):
+    """Cells are sized for the typical budget; a tenth of the spheres have budgets up to 8×
+    the largest radius and search around themselves: the candidates are exactly the pairs
+    closer than radii + margin + both budgets, each once."""
+    position, radius = _scene(kind, seed)
+    rng = np.random.default_rng(100 + seed)
+    n = position.shape[0]
+    budget = rng.uniform(0.0, 0.05, n)
+    fast = rng.random(n) < 0.1
+    budget[fast] = rng.uniform(0.1, 8.0 * radius.max(), fast.sum())
+    slow = float(np.quantile(budget, SLOW_QUANTILE))
+    margin = DEFAULT_MARGIN_FRACTION * radius.max()
+    cell = 2.0 * radius.max() + margin + 2.0 * slow
+    idx = np.arange(n)
+    lo, hi = _candidates(position, radius, idx, n, cell, -1.0, DEFAULT_MARGIN_FRACTION,
+                         budget, slow)
+    found = list(zip(lo.tolist(), hi.tolist()))
+    assert len(found) == len(set(found)), "each pair once"
+    assert found == sorted(found), "key order"
+    expected = []
+    for i in range(n):
+        for j in range(i + 1, n):
+            reach = (radius[i] + radius[j] + DEFAULT_MARGIN_FRACTION * max(radius[i], radius[j])
+                     + budget[i] + budget[j])
+            if np.sum((position[i] - position[j]) ** 2) < reach * reach:
+                expected.append((i, j))
+    assert found == expected
+    if kind != "spread":  # (spread spheres have few pairs at all)
+        assert sum(budget[i] > slow or budget[j] > slow for i, j in expected) > 10
