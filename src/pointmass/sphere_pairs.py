@@ -65,7 +65,7 @@ SLOW_CELL_GAIN = 0.8
 #: and summed), a hashed sphere ~300 ns more than a dense one (the settled 10 000-sphere pit:
 #: 5.5 against 2.3 ms a search). Measured on the 10 000-ball pour, whose waiting balls are
 #: parked 20 m below the box: with cells for its fastest ball (21 cells a sphere) 12.0 ms a
-#: search hashed, 7.3 dense; with cells for its typical ball (46 cells a sphere) 13.2 hashed,
+#: search hashed, 7.3 dense; with cells for its typical ball (~48 cells a sphere) 13.2 hashed,
 #: 5.0 dense.
 DENSE_CELLS_PER_SPHERE = 64
 
