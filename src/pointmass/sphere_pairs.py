@@ -171,6 +171,16 @@ def _margin_of(ri, rj, margin, margin_fraction):
     return margin if margin >= 0.0 else margin_fraction * max(ri, rj)
 
 
+@njit(cache=True, inline="always")
+def _with_room(lo, hi, found, more):
+    """(lo, hi) with room for ``more`` pairs after the first ``found`` (doubled as needed)."""
+    if found + more > lo.shape[0]:
+        grow = max(lo.shape[0], more)
+        lo = np.concatenate((lo, np.empty(grow, np.int64)))
+        hi = np.concatenate((hi, np.empty(grow, np.int64)))
+    return lo, hi
+
+
 @njit(cache=True, nogil=True)
 def _fast_pairs(pos, radius, idx, budget, slow, cell_size, margin, margin_fraction, cells,
                 starts, low, span, order, sj, sp, sr, sb, ss, lo, hi, found):
@@ -217,10 +227,7 @@ def _fast_pairs(pos, radius, idx, budget, slow, cell_size, margin, margin_fracti
                     else:
                         bucket = _cell_hash(cx + dx, cy + dy, cz - near + band, mask)
                         first, stop = starts[bucket], starts[bucket + 1]
-                    if found + stop - first > lo.shape[0]:
-                        grow = max(lo.shape[0], stop - first)
-                        lo = np.concatenate((lo, np.empty(grow, np.int64)))
-                        hi = np.concatenate((hi, np.empty(grow, np.int64)))
+                    lo, hi = _with_room(lo, hi, found, stop - first)
                     for s in range(first, stop):
                         if not dense:  # only the bucket's spheres of this very cell
                             m = order[s]
@@ -290,10 +297,7 @@ def _candidates(pos, radius, idx, count, cell_size, margin, margin_fraction, bud
         # Own cell (later spheres only) and the 13 "forward" neighbour cells: each pair once.
         for r in range(_neighbour_runs(cells, slot, starts, low, span, k, runs)):
             first, stop = runs[r, 0], runs[r, 1]
-            if found + stop - first > lo.shape[0]:
-                grow = max(lo.shape[0], stop - first)
-                lo = np.concatenate((lo, np.empty(grow, np.int64)))
-                hi = np.concatenate((hi, np.empty(grow, np.int64)))
+            lo, hi = _with_room(lo, hi, found, stop - first)
             for s in range(first, stop):
                 if not dense:  # a hashed bucket may hold other cells: only the run's own
                     m = order[s]
@@ -468,10 +472,18 @@ class PairList:
         # slightly smaller cells save (the 10 000-sphere pit's landing: pairs 2.4-2.6 -> 2.7-3.0
         # ms a step with cells 13 % smaller; the 10 000-ball pour's search 6.6 -> 5.0 ms with
         # cells 24 % smaller).
+        # Nor where the smaller cells would take the grid from dense to hashed.
         fastest = float(budget.max())
         slow = float(np.quantile(budget, SLOW_QUANTILE))
         if 2.0 * (largest + slow) + reach > SLOW_CELL_GAIN * (2.0 * (largest + fastest) + reach):
             slow = fastest
+        elif slow < fastest:
+            box = np.ptp(position[idx], axis=0)
+            limit = DENSE_CELLS_PER_SPHERE * idx.shape[0]
+            slow_cells = float(np.prod(box / (2.0 * (largest + slow) + reach) + 1.0))
+            fast_cells = float(np.prod(box / (2.0 * (largest + fastest) + reach) + 1.0))
+            if slow_cells > limit >= fast_cells:
+                slow = fastest
         cell = 2.0 * (largest + slow) + reach  # a slow pair's whole reach
         self.lo, self.hi = _candidates(position, radius, idx, position.shape[0], cell,
                                        float(margin), float(margin_fraction), budget, slow)
