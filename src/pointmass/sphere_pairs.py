@@ -473,18 +473,20 @@ class PairList:
         # ms a step with cells 13 % smaller; the 10 000-ball pour's search 6.6 -> 5.0 ms with
         # cells 24 % smaller).
         # Nor where the smaller cells would take the grid from dense to hashed.
+        def cell_for(b: float) -> float:  # the whole reach of a pair of budgets ≤ b
+            return 2.0 * (largest + b) + reach
+
         fastest = float(budget.max())
         slow = float(np.quantile(budget, SLOW_QUANTILE))
-        if 2.0 * (largest + slow) + reach > SLOW_CELL_GAIN * (2.0 * (largest + fastest) + reach):
+        if cell_for(slow) > SLOW_CELL_GAIN * cell_for(fastest):
             slow = fastest
         elif slow < fastest:
             box = np.ptp(position[idx], axis=0)
             limit = DENSE_CELLS_PER_SPHERE * idx.shape[0]
-            slow_cells = float(np.prod(box / (2.0 * (largest + slow) + reach) + 1.0))
-            fast_cells = float(np.prod(box / (2.0 * (largest + fastest) + reach) + 1.0))
-            if slow_cells > limit >= fast_cells:
+            slow_cells = np.prod(box / cell_for(slow) + 1.0)
+            if slow_cells > limit >= np.prod(box / cell_for(fastest) + 1.0):
                 slow = fastest
-        cell = 2.0 * (largest + slow) + reach  # a slow pair's whole reach
+        cell = cell_for(slow)
         self.lo, self.hi = _candidates(position, radius, idx, position.shape[0], cell,
                                        float(margin), float(margin_fraction), budget, slow)
         self._idx = idx.copy()
