@@ -1,0 +1,76 @@
+"""Projection on contacts measured again where the particles are now (Newton's method).
+
+The projection stages move particles along each contact's normal *as it was generated*, with a
+depth patched linearly (``kernels.py``): exact for planes, and for two particles as long as
+their centre line hardly turns within the step. A link that swings fast does turn: a 0.3 m rod
+turning 0.6 rad in a step is 18 % longer than the linear depth says, and the projection, pushing
+along the old line, lengthens the neighbours it corrects (measured: a 30-link chain of 0.3 m
+rods, pinned at one end and released level, reached 155 % link error at dt = 1/60; 0.2 % with
+two substeps).
+
+For a contact between two particles whose normal lies along their centre line (sphere pairs,
+rods and cables: every generator of the library), the depth is a function of the distance
+between the centres, so it can be measured again from the positions plus the displacements so
+far, along the centre line as it is now. ``relinearize`` does that and writes a contact set
+whose linear model is exact at the current displacements; projecting it again is one Newton
+step on the non-linear position constraints, and repeating until nothing is left converges
+where the particles move a lot (the chain above: every link within 1e-5 after 300 steps).
+Contacts against scenery (planes; anchors, whose points the set does not carry) keep their
+linear model, as do contacts whose normal is not along the centre line (a user's generator).
+"""
+
+from __future__ import annotations
+
+import math
+
+from numba import njit
+
+#: A normal counts as along the centre line when its cosine with it is within this of ±1.
+ALONG_CENTRES = 1e-9
+
+
+@njit(cache=True, nogil=True)
+def relinearize(position, bod, con, n_out, depth0_out, depths_out):
+    """Write, for each contact, a normal and a generated depth (``n_out``, ``depth0_out``) whose
+    linear model ``depth0 - (disp_a - disp_b)·n`` gives its depth at the current displacements
+    exactly, and that depth (``depths_out``). ``position`` holds the positions the contacts were
+    generated at (the solve moves them by ``bod.disp`` only at its end).
+
+    Returns the largest violation left: a penetration, or a bilateral contact's error either way."""
+    ca, cb, n, depth0, bil, disp = con.a, con.b, con.n, con.depth0, con.bil, bod.disp
+    worst = 0.0
+    for c in range(ca.shape[0]):
+        a = ca[c]
+        b = cb[c]
+        nx, ny, nz = n[c, 0], n[c, 1], n[c, 2]
+        d0 = depth0[c]
+        if b >= 0:
+            gx = position[a, 0] - position[b, 0]
+            gy = position[a, 1] - position[b, 1]
+            gz = position[a, 2] - position[b, 2]
+            g = math.sqrt(gx * gx + gy * gy + gz * gz)
+            cosine = (nx * gx + ny * gy + nz * gz) / g if g > 0.0 else 0.0
+            if abs(abs(cosine) - 1.0) <= ALONG_CENTRES:
+                # sign +1: n from b to a (a sphere pair: farther apart, shallower);
+                # -1: n from a to b (a link: farther apart, deeper).
+                sign = 1.0 if cosine > 0.0 else -1.0
+                ux = gx + disp[a, 0] - disp[b, 0]
+                uy = gy + disp[a, 1] - disp[b, 1]
+                uz = gz + disp[a, 2] - disp[b, 2]
+                u = math.sqrt(ux * ux + uy * uy + uz * uz)
+                if u > 0.0:
+                    depth = d0 - sign * (u - g)
+                    nx, ny, nz = sign * ux / u, sign * uy / u, sign * uz / u
+                    d0 = depth + ((disp[a, 0] - disp[b, 0]) * nx + (disp[a, 1] - disp[b, 1]) * ny
+                                  + (disp[a, 2] - disp[b, 2]) * nz)
+        n_out[c, 0] = nx
+        n_out[c, 1] = ny
+        n_out[c, 2] = nz
+        depth0_out[c] = d0
+        moved = disp[a, 0] * nx + disp[a, 1] * ny + disp[a, 2] * nz
+        if b >= 0:
+            moved -= disp[b, 0] * nx + disp[b, 1] * ny + disp[b, 2] * nz
+        depth = d0 - moved
+        depths_out[c] = depth
+        worst = max(worst, abs(depth) if bil[c] else depth)
+    return worst
