@@ -34,6 +34,10 @@ class ContactBuffer:
         key: Identity of the contact across steps, shape (M,), int64; -1 for none. The solver
             warm-starts a contact with the impulse that the contact with the same key needed in
             the previous step (``pointmass.keys`` builds them, ``solver/history.py`` keeps them).
+        anchors: For contacts against scenery that is a point (an anchored cable or rod), that
+            point, shape (M, 3), NaN for the other rows; None when no row has one. The solver
+            measures such a contact again from the point where its particle has moved
+            (``solver/remeasure.py``), as it does a contact between two particles.
     """
 
     def __init__(self, capacity: int = 64) -> None:
@@ -54,7 +58,9 @@ class ContactBuffer:
         key = np.full(capacity, -1, np.int64)
         friction = np.zeros(capacity)
         bilateral = np.zeros(capacity, np.bool_)
+        anchor = np.full((capacity, 3), np.nan)
         if old is not None:
+            anchor[:n] = self._anchor[:n]
             bilateral[:n] = self._bilateral[:n]
             key[:n] = self._key[:n]
             friction[:n] = self._friction[:n]
@@ -65,6 +71,8 @@ class ContactBuffer:
         self._penetration, self._restitution, self._key = pen, rest, key
         self._friction = friction
         self._bilateral = bilateral
+        self._anchor = anchor
+        self._anchored = getattr(self, "_anchored", False)  # some row since clear has a point
         self.capacity = capacity
 
     def reserve(self, extra: int) -> None:
@@ -79,6 +87,9 @@ class ContactBuffer:
         if self.count:  # (no slicing for an empty buffer: a tiny world's step clears one)
             self._friction[: self.count] = 0.0
             self._bilateral[: self.count] = False
+            if self._anchored:  # (only then: the pit's 35 000 rows never have one)
+                self._anchor[: self.count] = np.nan
+                self._anchored = False
             self.count = 0
 
     def __len__(self) -> int:
@@ -93,12 +104,17 @@ class ContactBuffer:
     friction = property(lambda self: self._friction[: self.count])
     bilateral = property(lambda self: self._bilateral[: self.count])
 
+    @property
+    def anchors(self) -> np.ndarray | None:
+        return self._anchor[: self.count] if self._anchored else None
+
     def add(self, a, b, normal, penetration, restitution, key=-1, *, friction=0.0,
-            bilateral=False) -> None:
+            bilateral=False, anchor=None) -> None:
         """Append contacts; each argument is one value or an array of length K (broadcast).
         ``key`` identifies a contact across steps (-1: none, no warm start); ``friction`` is the
         Coulomb coefficient μ ≥ 0 (0: frictionless); ``bilateral`` makes a two-way constraint
-        (a rod: held at depth 0 from both sides)."""
+        (a rod: held at depth 0 from both sides); ``anchor`` (K, 3) is the scenery point of
+        contacts with b = -1 whose normal lies along the line from it to a (see ``anchors``)."""
         a = np.atleast_1d(np.asarray(a, np.int64))
         k = a.shape[0]
         if k == 0:
@@ -117,6 +133,9 @@ class ContactBuffer:
         self._key[s] = key
         self._friction[s] = friction
         self._bilateral[s] = bilateral
+        if anchor is not None:
+            self._anchor[s] = anchor
+            self._anchored = True
         self.count += k
 
     def raw(self) -> tuple[np.ndarray, ...]:

@@ -65,6 +65,10 @@ class _Links(ContactGenerator):
         p = particles.position
         return p[self.a], p[self.b]
 
+    def _anchors(self) -> np.ndarray | None:
+        """The scenery points of the b ends (None: b ends are particles)."""
+        return None
+
     def current_lengths(self, particles: Particles) -> np.ndarray:
         """Current lengths [m], shape (K,)."""
         pa, pb = self._ends(particles)
@@ -113,9 +117,11 @@ class Cable(_Links):
         if not over.any():
             return
         # The normal points from b to a's target: a must move toward b.
+        anchors = self._anchors()
         contacts.add(self.a[over], self._b_index()[over], _unit(d[over], length[over]),
                      length[over] - self._len[over], self._restitution,
-                     self._key_base | np.flatnonzero(over))
+                     self._key_base | np.flatnonzero(over),
+                     anchor=None if anchors is None else anchors[over])
 
     def _b_index(self) -> np.ndarray:
         return self.b
@@ -145,7 +151,8 @@ class Rod(_Links):
         error = length - self._len
         # The normal points from b toward a's target: a moves toward b when the rod is too long.
         contacts.add(self.a, self._b_index(), _unit(d, length), error, 0.0,
-                     self._key_base | np.arange(self.a.shape[0]), bilateral=True)
+                     self._key_base | np.arange(self.a.shape[0]), bilateral=True,
+                     anchor=self._anchors())
 
     def _b_index(self) -> np.ndarray:
         return self.b
@@ -170,6 +177,9 @@ class _Anchored:
 
     def _b_index(self) -> np.ndarray:
         return np.full(self.a.shape[0], -1, np.int64)
+
+    def _anchors(self) -> np.ndarray:
+        return self.anchor
 
 
 class AnchoredCable(_Anchored, Cable):

@@ -163,24 +163,51 @@ def test_rods_keep_their_length(mode, tolerance):
     assert world.particles.position[ids[-1], 1] < 4.0  # it really swung down
 
 
-@pytest.mark.parametrize(("links", "length"), [(30, 0.3), (100, 1.0)])
-def test_a_long_chain_released_level_keeps_its_lengths_and_adds_no_energy(links, length):
-    """A chain pinned at one end and released level whips its free end to ~20 m/s: links
-    turn up to ~0.6 rad in a step, and a projection along the contacts as generated lengthened
-    the links it corrected (155 % / 147 % error before the re-measured projection, solver/
-    remeasure.py). Rods are workless: the chain's energy may only fall."""
+@pytest.mark.parametrize(("links", "length", "anchored"),
+                         [(30, 0.3, False), (100, 1.0, False), (100, 1.0, True)])
+def test_a_long_chain_released_level_keeps_its_lengths_and_adds_no_energy(links, length,
+                                                                            anchored):
+    """A chain pinned at one end (a pinned particle, or an ``AnchoredRod`` to a point) and
+    released level whips its free end to ~20 m/s: links turn up to ~0.6 rad in a step, and a
+    projection along the contacts as generated lengthened the links it corrected (155 % / 147 %
+    / 101 % error before the re-measured projection, solver/remeasure.py). Rods are workless:
+    the chain's energy may only fall."""
     world = pm.World()
     ids = world.add_particles([(length * i, 10.0, 0.0) for i in range(links + 1)])
-    world.particles.pin(ids[0])
+    if anchored:
+        world.particles.set_mass(ids[0], 1.0)  # held by the anchored rod instead
+        world.add(pm.AnchoredRod(ids[0], (-length, 10.0, 0.0), length))
+    else:
+        world.particles.pin(ids[0])
     rods = world.add(pm.Rod(ids[:-1], ids[1:], length=length))
     energy = world.kinetic_energy() + world.potential_energy()
     for _ in range(300):
         world.step(DT)
         assert np.abs(rods.current_lengths(world.particles) / length - 1.0).max() < 1e-4
+        if anchored:
+            reach = np.linalg.norm(world.particles.position[ids[0]] - (-length, 10.0, 0.0))
+            assert abs(reach / length - 1.0) < 1e-4
         now = world.kinetic_energy() + world.potential_energy()
         assert now <= energy + 1e-9 * abs(energy)
         energy = now
     assert world.particles.position[ids[-1], 1] < 10.0 - length * links / 2  # it swung down
+
+
+def test_contact_anchors_are_kept_per_row_and_forgotten_on_clear():
+    """``ContactBuffer.anchors``: the scenery point of each anchored row (NaN for the others),
+    None once cleared, so a step without anchored links pays nothing for them."""
+    buffer = pm.ContactBuffer(capacity=1)
+    buffer.add(0, -1, (0.0, 1.0, 0.0), 0.0, 0.0)
+    assert buffer.anchors is None
+    buffer.add([1, 2], -1, (0.0, 1.0, 0.0), 0.0, 0.0, anchor=[(1.0, 2.0, 3.0), (4.0, 5.0, 6.0)])
+    anchors = buffer.anchors
+    assert np.isnan(anchors[0]).all()
+    assert anchors[1:].tolist() == [[1.0, 2.0, 3.0], [4.0, 5.0, 6.0]]  # kept through growth
+    buffer.clear()
+    assert buffer.anchors is None
+    buffer.add(0, -1, (0.0, 1.0, 0.0), 0.0, 0.0)
+    buffer.add(1, -1, (0.0, 1.0, 0.0), 0.0, 0.0, anchor=(7.0, 8.0, 9.0))
+    assert np.isnan(buffer.anchors[0]).all() and buffer.anchors[1].tolist() == [7.0, 8.0, 9.0]
 
 
 def test_cables_never_over_extend():

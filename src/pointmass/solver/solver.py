@@ -219,8 +219,10 @@ class Solver:
             velocity_passes += more
             used += used2
         stages.follow_impulses(bod, con, dt)
-        position_passes, measured = self._positions(bod, con, PROJECTION_TOLERANCE * dt, blocks,
-                                                    p.position)
+        anchors = contacts.anchors
+        position_passes, measured = self._positions(
+            bod, con, PROJECTION_TOLERANCE * dt, blocks, p.position,
+            _NO_ANCHORS if anchors is None else anchors)
         history.keep(contacts.key, con.impulse,
                      con.tangent if contacts.friction.any() else None)
         return SolveStats(contacts=contacts.count, impact_passes=int(impact_passes),
@@ -250,7 +252,7 @@ class Solver:
         return done + more, used + used2 + con.a.shape[0]
 
     @staticmethod
-    def _positions(bod, con, tolerance: float, blocks, position):
+    def _positions(bod, con, tolerance: float, blocks, position, anchors):
         """Projection passes, with the exact solve for a small set that does not converge
         (on every core for a large set split into ``blocks``), then for a small set the
         exact solve on its contacts measured again (``MAX_NEWTON_PROJECTIONS``).
@@ -276,11 +278,14 @@ class Solver:
             more, _ = stages.project_positions(bod, con, tolerance,
                                                max(MAX_PROJECTION_PASSES - first, 1))
             done += more
-        newton, measured = _remeasured(position, bod, con, tolerance)
+        newton, measured = _remeasured(position, anchors, bod, con, tolerance)
         return done + newton, measured
 
 
-def _remeasured(position, bod, con, tolerance: float):
+_NO_ANCHORS = np.empty((0, 3))
+
+
+def _remeasured(position, anchors, bod, con, tolerance: float):
     """Newton iterations on the position constraints (``remeasure.py``): the exact projection
     of the contacts measured again, until no violation exceeds ``tolerance``. Returns (the
     iterations, the contact set whose linear depths are current)."""
@@ -288,7 +293,7 @@ def _remeasured(position, bod, con, tolerance: float):
     n = np.empty((m, 3))
     depth0 = np.empty(m)
     depths = np.empty(m)
-    worst = remeasure.relinearize(position, bod, con, n, depth0, depths)
+    worst = remeasure.relinearize(position, anchors, bod, con, n, depth0, depths)
     if worst <= tolerance:
         return 0, con  # nothing moved far enough to matter: the same bits as before
     again = con._replace(n=n, depth0=depth0)
@@ -302,7 +307,7 @@ def _remeasured(position, bod, con, tolerance: float):
         if largest > tolerance:
             stages.current_depths(bod, again, depths)
             direct.project_positions(bod, again, depths)
-        worst = remeasure.relinearize(position, bod, con, n, depth0, depths)
+        worst = remeasure.relinearize(position, anchors, bod, con, n, depth0, depths)
         if worst < best[0]:
             best = (worst, bod.disp.copy(), n.copy(), depth0.copy())
     if worst > best[0]:  # Newton wandered (links turned too far to linearise): keep the best
