@@ -163,30 +163,36 @@ def test_rods_keep_their_length(mode, tolerance):
     assert world.particles.position[ids[-1], 1] < 4.0  # it really swung down
 
 
-@pytest.mark.parametrize(("links", "length", "anchored"),
-                         [(30, 0.3, False), (100, 1.0, False), (100, 1.0, True)])
-def test_a_long_chain_released_level_keeps_its_lengths_and_adds_no_energy(links, length,
-                                                                            anchored):
-    """A chain pinned at one end (a pinned particle, or an ``AnchoredRod`` to a point) and
+@pytest.mark.parametrize(("links", "length", "kind"),
+                         [(30, 0.3, "rods"), (100, 1.0, "rods"), (100, 1.0, "anchored rods"),
+                          (100, 1.0, "anchored cables")])
+def test_a_long_chain_released_level_keeps_its_lengths_and_adds_no_energy(links, length, kind):
+    """A chain pinned at one end (a pinned particle, or an anchored link to a point) and
     released level whips its free end to ~20 m/s: links turn up to ~0.6 rad in a step, and a
     projection along the contacts as generated lengthened the links it corrected (155 % / 147 %
-    / 147 % error before the re-measured projection, solver/remeasure.py). Rods are workless:
-    the chain's energy may only fall."""
+    / 147 % / 371 % error before the re-measured projection, solver/remeasure.py; the cables
+    had no exact solve either, being more than 64 unilateral rows). Links are workless or
+    inelastic: the chain's energy may only fall."""
     world = pm.World()
     ids = world.add_particles([(length * i, 10.0, 0.0) for i in range(links + 1)])
-    if anchored:
-        world.particles.set_mass(ids[0], 1.0)  # held by the anchored rod instead
-        world.add(pm.AnchoredRod(ids[0], (-length, 10.0, 0.0), length))
-    else:
+    if kind == "rods":
         world.particles.pin(ids[0])
-    rods = world.add(pm.Rod(ids[:-1], ids[1:], length=length))
+        chain = world.add(pm.Rod(ids[:-1], ids[1:], length=length))
+    elif kind == "anchored rods":
+        world.add(pm.AnchoredRod(ids[0], (-length, 10.0, 0.0), length))
+        chain = world.add(pm.Rod(ids[:-1], ids[1:], length=length))
+    else:
+        world.add(pm.AnchoredCable(ids[0], (-length, 10.0, 0.0), length))
+        chain = world.add(pm.Cable(ids[:-1], ids[1:], max_length=length))
+    bilateral = kind != "anchored cables"
     energy = world.kinetic_energy() + world.potential_energy()
     for _ in range(300):
         world.step(DT)
-        assert np.abs(rods.current_lengths(world.particles) / length - 1.0).max() < 1e-4
-        if anchored:
+        stretch = chain.current_lengths(world.particles) / length - 1.0
+        if kind != "rods":
             reach = np.linalg.norm(world.particles.position[ids[0]] - (-length, 10.0, 0.0))
-            assert abs(reach / length - 1.0) < 1e-4
+            stretch = np.append(stretch, reach / length - 1.0)
+        assert (np.abs(stretch) if bilateral else stretch).max() < 1e-4
         now = world.kinetic_energy() + world.potential_energy()
         assert now <= energy + 1e-9 * abs(energy)
         energy = now

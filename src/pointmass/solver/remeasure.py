@@ -87,3 +87,21 @@ def relinearize(position, anchor, bod, con, n_out, depth0_out, depths_out):
         depths_out[c] = depth
         worst = max(worst, abs(depth) if bil[c] else depth)
     return worst
+
+
+@njit(cache=True, nogil=True)
+def has_links(position, anchor, con):
+    """Whether some contact is a link: its normal along the line between its ends but pointing
+    from a to b (farther apart is deeper: a cable or rod), or measured from an anchor point.
+    A pile's contacts push their ends apart, along n from b to a."""
+    if anchor.shape[0] > 0:
+        return True
+    ca, cb, n = con.a, con.b, con.n
+    for c in range(ca.shape[0]):
+        a = ca[c]
+        b = cb[c]
+        if b >= 0 and ((position[a, 0] - position[b, 0]) * n[c, 0]
+                       + (position[a, 1] - position[b, 1]) * n[c, 1]
+                       + (position[a, 2] - position[b, 2]) * n[c, 2]) < 0.0:
+            return True
+    return False

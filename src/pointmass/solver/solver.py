@@ -206,23 +206,24 @@ class Solver:
             passes = int(self.max_passes)
         else:
             passes = MAX_LARGE_VELOCITY_PASSES if _large(con) else MAX_VELOCITY_PASSES
+        anchors = contacts.anchors
+        anchors = _NO_ANCHORS if anchors is None else anchors
+        small = _direct_may_help(con, p.position, anchors)
         before = (p.kinetic_energy(), p.velocity.copy(), bod.disp.copy())
         stages.warm_start(bod, con, dt)
-        velocity_passes, used = self._velocities(bod, con, dt, passes, blocks)
+        velocity_passes, used = self._velocities(bod, con, dt, passes, blocks, small)
         cold = p.kinetic_energy() > before[0] * (1.0 + 1e-9) + 1e-15
         if cold:  # the warm start added energy that the passes did not take back: redo cold
             p.velocity[:] = before[1]
             bod.disp[:] = before[2]
             con.impulse[:] = 0.0
             con.tangent[:] = 0.0
-            more, used2 = self._velocities(bod, con, dt, passes, blocks)
+            more, used2 = self._velocities(bod, con, dt, passes, blocks, small)
             velocity_passes += more
             used += used2
         stages.follow_impulses(bod, con, dt)
-        anchors = contacts.anchors
-        position_passes, measured = self._positions(
-            bod, con, PROJECTION_TOLERANCE * dt, blocks, p.position,
-            _NO_ANCHORS if anchors is None else anchors)
+        position_passes, measured = self._positions(bod, con, PROJECTION_TOLERANCE * dt, blocks,
+                                                    small, p.position, anchors)
         history.keep(contacts.key, con.impulse,
                      con.tangent if contacts.friction.any() else None)
         return SolveStats(contacts=contacts.count, impact_passes=int(impact_passes),
@@ -231,17 +232,16 @@ class Solver:
                           resolutions=int(hits + used), cold_restart=bool(cold)), measured
 
     @staticmethod
-    def _velocities(bod, con, dt: float, passes: int, blocks) -> tuple[int, int]:
-        """Gauss–Seidel passes; a small set still unconverged after ``DIRECT_AFTER_PASSES`` (a
-        mass ratio) gets the exact solve (``direct.py``) and a few passes more for friction;
-        a set too large for it is over-relaxed (``LARGE_SET_RELAXATION``); one split into
-        ``blocks`` runs them on every core (``parallel.py``)."""
+    def _velocities(bod, con, dt: float, passes: int, blocks, small: bool) -> tuple[int, int]:
+        """Gauss–Seidel passes; a ``small`` set (``_direct_may_help``) still unconverged after
+        ``DIRECT_AFTER_PASSES`` gets the exact solve (``direct.py``) and a few passes more for
+        friction; a set too large for it is over-relaxed (``LARGE_SET_RELAXATION``); one split
+        into ``blocks`` runs them on every core (``parallel.py``)."""
         relaxation = LARGE_SET_RELAXATION if _large(con) else 1.0
         if blocks is not None:
             return parallel.solve_velocities(bod, con, blocks.order, blocks.spans,
                                              blocks.phase_starts, dt, VELOCITY_TOLERANCE, passes,
                                              relaxation)
-        small = _direct_may_help(con)
         first = min(passes, DIRECT_AFTER_PASSES) if small else passes
         done, used = stages.solve_velocities(bod, con, dt, VELOCITY_TOLERANCE, first, relaxation)
         if done < first or not small:
@@ -252,7 +252,7 @@ class Solver:
         return done + more, used + used2 + con.a.shape[0]
 
     @staticmethod
-    def _positions(bod, con, tolerance: float, blocks, position, anchors):
+    def _positions(bod, con, tolerance: float, blocks, small: bool, position, anchors):
         """Projection passes, with the exact solve for a small set that does not converge
         (on every core for a large set split into ``blocks``), then for a small set the
         exact solve on its contacts measured again (``MAX_NEWTON_PROJECTIONS``).
@@ -263,7 +263,6 @@ class Solver:
             return parallel.project_positions(bod, con, blocks.order, blocks.spans,
                                               blocks.phase_starts, tolerance,
                                               MAX_LARGE_PROJECTION_PASSES)[0], con
-        small = _direct_may_help(con)
         first = min(DIRECT_AFTER_PASSES, MAX_PROJECTION_PASSES) if small \
             else MAX_PROJECTION_PASSES
         if _large(con):
@@ -322,12 +321,15 @@ def _large(con) -> bool:
     return con.a.shape[0] > direct.DIRECT_MAX_CONTACTS
 
 
-def _direct_may_help(con) -> bool:
-    """Small enough for the exact solve, and either tiny or ill-conditioned as links under
-    heavy loads are (``DIRECT_MIN_MASS_RATIO``)."""
+def _direct_may_help(con, position, anchors) -> bool:
+    """Small enough for the exact solve, and either tiny, or a chain of links (rods; cables
+    and anchored links, which ``remeasure.has_links`` tells from a pile's contacts: Gauss–Seidel
+    crawls along a chain, measured: a 100-cable chain released level stretched 371 %), or
+    ill-conditioned as links under heavy loads are (``DIRECT_MIN_MASS_RATIO``)."""
     if _large(con):
         return False
-    if con.a.shape[0] <= DIRECT_ALWAYS_CONTACTS or con.bil.any():
+    if con.a.shape[0] <= DIRECT_ALWAYS_CONTACTS or con.bil.any() \
+            or remeasure.has_links(position, anchors, con):
         return True
     w = np.concatenate([con.wa, con.wb])
     w = w[w > 0.0]
