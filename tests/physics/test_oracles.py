@@ -199,6 +199,27 @@ def test_a_long_chain_released_level_keeps_its_lengths_and_adds_no_energy(links,
     assert world.particles.position[ids[-1], 1] < 10.0 - length * links / 2  # it swung down
 
 
+def test_a_violation_no_projection_can_remove_is_not_re_measured_for_ever():
+    """A rod between two pinned particles at the wrong distance: nothing can move, so the
+    re-measured projection stops once it finds nothing better (``NEWTON_STALL``), not after
+    ``MAX_NEWTON_PROJECTIONS`` exact solves every step; the chain hanging beside it still holds."""
+    from pointmass.solver import solver
+
+    world = pm.World()
+    a, b = world.add_particle((0.0, 1.0, 0.0)), world.add_particle((2.0, 1.0, 0.0))
+    world.particles.pin(a)
+    world.particles.pin(b)
+    world.add(pm.Rod(a, b, 1.0))
+    ids = world.add_particles([(0.3 * (i + 1), 1.0, 0.0) for i in range(5)])
+    chain = world.add(pm.Rod(np.r_[a, ids[:-1]], ids, 0.3))
+    for _ in range(120):
+        stats = world.step(DT)
+        assert stats.position_passes <= solver.MAX_PROJECTION_PASSES + solver.NEWTON_STALL
+    assert solver.MAX_PROJECTION_PASSES + solver.NEWTON_STALL < solver.MAX_NEWTON_PROJECTIONS
+    assert world.particles.position[[a, b]].tolist() == [[0.0, 1.0, 0.0], [2.0, 1.0, 0.0]]
+    assert np.abs(chain.current_lengths(world.particles) / 0.3 - 1.0).max() < 1e-4
+
+
 def test_contact_anchors_are_kept_per_row_and_forgotten_on_clear():
     """``ContactBuffer.anchors``: the scenery point of each anchored row (NaN for the others),
     None once cleared, so a step without anchored links pays nothing for them."""
