@@ -22,7 +22,9 @@ loaded links at once:
    A set too large for the exact solve is over-relaxed (``LARGE_SET_RELAXATION``, ω < 2:
    each row's step still lowers f, only further).
 5. *project positions* — mass-weighted projection until no penetration exceeds
-   ``PROJECTION_TOLERANCE × dt``: positions only, no velocity, so no energy either.
+   ``PROJECTION_TOLERANCE × dt``: positions only, no velocity, so no energy either. A small
+   set is then projected again on its contacts measured where the particles now are (Newton's
+   method, ``remeasure.py``), so a link that turned within the step is held at its length.
 6. *store impulses* — the sweep's impulses go to the history for the next step.
 
 **"worst-first"** is the book's loop (resolve the worst contact, 2 × contacts times) on the same
