@@ -176,6 +176,15 @@ def simulate(pos, vel, half, radius, stiffness, zeta, dt, steps, skin):
                 pos[i, q] += vel[i, q] * dt
 
 
+def reference_run(pos: np.ndarray, side: float, seconds: float, stiffness: float = 1e5):
+    """Positions and velocities of the pit started at ``pos`` (at rest) after ``seconds``."""
+    zeta = damping_ratio(E)
+    dt = math.pi / math.sqrt(stiffness / 0.5) / 70.0
+    pos, vel = pos.copy(), np.zeros_like(pos)
+    simulate(pos, vel, side / 2, R, stiffness, zeta, dt, round(seconds / dt), 0.1)
+    return pos, vel
+
+
 def pointmass_pit(pos: np.ndarray, side: float):
     """The same pit in a default pointmass World."""
     import pointmass as pm
