@@ -59,12 +59,17 @@ class Outcome:
 
 # --- engines: each returns (seconds for STEPS steps, positions, velocities) --------------------
 
-def run_pointmass(n: int):
-    pos, side = layout(n)
+def pointmass_pit(pos: np.ndarray, side: float) -> pm.World:
+    """The pit in a default pointmass World (also reference_dem_pit.py's)."""
     world = pm.World()
     world.add_particles(pos, radii=R)
     world.add(pm.Box((-side / 2, 0, -side / 2), (side / 2, 100, side / 2), restitution=E))
     world.add(pm.SphereCollisions(restitution=E))
+    return world
+
+
+def run_pointmass(n: int):
+    world = pointmass_pit(*layout(n))
     start = time.perf_counter()
     for _ in range(STEPS):
         world.step(DT)

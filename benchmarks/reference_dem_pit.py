@@ -32,7 +32,7 @@ import numpy as np
 from numba import njit
 
 sys.path.insert(0, str(Path(__file__).parent))
-from bench_peers import DT, E, R, layout
+from bench_peers import DT, E, R, layout, pointmass_pit
 
 G = 9.81
 
@@ -176,24 +176,19 @@ def simulate(pos, vel, half, radius, stiffness, zeta, dt, steps, skin):
                 pos[i, q] += vel[i, q] * dt
 
 
+def contact_time(stiffness: float) -> float:
+    """How long a pair contact lasts [s] (half a period of two unit masses on the spring); the
+    step is a 70th of it."""
+    return math.pi / math.sqrt(stiffness / 0.5)
+
+
 def reference_run(pos: np.ndarray, side: float, seconds: float, stiffness: float = 1e5):
     """Positions and velocities of the pit started at ``pos`` (at rest) after ``seconds``."""
     zeta = damping_ratio(E)
-    dt = math.pi / math.sqrt(stiffness / 0.5) / 70.0
+    dt = contact_time(stiffness) / 70.0
     pos, vel = pos.copy(), np.zeros_like(pos)
     simulate(pos, vel, side / 2, R, stiffness, zeta, dt, round(seconds / dt), 0.1)
     return pos, vel
-
-
-def pointmass_pit(pos: np.ndarray, side: float):
-    """The same pit in a default pointmass World."""
-    import pointmass as pm
-
-    world = pm.World()
-    world.add_particles(pos, radii=R)
-    world.add(pm.Box((-side / 2, 0, -side / 2), (side / 2, 100, side / 2), restitution=E))
-    world.add(pm.SphereCollisions(restitution=E))
-    return world
 
 
 def summary(pos: np.ndarray, vel: np.ndarray) -> str:
@@ -210,10 +205,9 @@ def main() -> None:
     parser.add_argument("--no-pointmass", action="store_true")
     args = parser.parse_args()
     zeta = damping_ratio(E)
-    omega = math.sqrt(args.stiffness / 0.5)
-    dt = (math.pi / omega) / 70.0                      # ~70 steps a pair contact
+    dt = contact_time(args.stiffness) / 70.0
     print(f"DEM: stiffness {args.stiffness:.0e} N/m, damping ratio {zeta:.4f} (e = {E}), "
-          f"contact {1e3 * math.pi / omega:.2f} ms, dt {1e6 * dt:.1f} µs, "
+          f"contact {1e3 * contact_time(args.stiffness):.2f} ms, dt {1e6 * dt:.1f} µs, "
           f"resting overlap under one sphere ≈ {1e3 * G / args.stiffness:.2f} mm")
     for seed in args.seeds:
         start, side = layout(args.n, seed)

@@ -45,6 +45,7 @@ class ContactBuffer:
         #: The step these contacts are for [s] (the world sets it; 0: no speculative reach by
         #: speed, for contacts found outside a step).
         self.dt = 0.0
+        self._anchored = False  # some row since the last clear has an anchor point
         self._alloc(max(int(capacity), 1))
 
     def _alloc(self, capacity: int) -> None:
@@ -72,7 +73,6 @@ class ContactBuffer:
         self._friction = friction
         self._bilateral = bilateral
         self._anchor = anchor
-        self._anchored = getattr(self, "_anchored", False)  # some row since clear has a point
         self.capacity = capacity
 
     def reserve(self, extra: int) -> None:

@@ -4,7 +4,6 @@ between two spheres and against a wall, and a sphere resting on the floor sinks 
 
 from __future__ import annotations
 
-import math
 import sys
 from pathlib import Path
 
@@ -12,11 +11,11 @@ import numpy as np
 import pytest
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[2] / "benchmarks"))
-from reference_dem_pit import G, R, damping_ratio, simulate
+from reference_dem_pit import G, R, contact_time, damping_ratio, simulate
 
 K = 1e5
 ZETA = damping_ratio(0.5)
-DT = math.pi / math.sqrt(K / 0.5) / 70.0
+DT = contact_time(K) / 70.0
 HALF = 50.0  # walls far away unless a test puts a sphere against one
 
 
