@@ -24,13 +24,26 @@ import os as _os
 _os.environ.setdefault("OMP_WAIT_POLICY", "PASSIVE")
 
 from . import probes, stability
-from .collide import Box, Ground, Plane, SphereCollisions
+from .collide import BoxContainer, Ground, Plane, SphereCollisions
 from .contacts import ContactBuffer, ContactGenerator
 from .forces import Buoyancy, CustomForce, Drag, ForceGenerator, Gravity
 from .links import AnchoredCable, AnchoredRod, Cable, Rod
 from .params import choice, tweak
 from .particles import Particle, Particles
 from .probes import Probe
+from .rigid.bodies import Bodies, Body
+from .rigid.forces import (
+    Aero,
+    AeroControl,
+    AnchoredBodySpring,
+    BodyBuoyancy,
+    BodyForce,
+    BodyForceGenerator,
+    BodySpring,
+    Explosion,
+)
+from .rigid.joints import BallJoint, HingeJoint, Joint
+from .rigid.shapes import Box, Sphere
 from .scene import BoxVisual, CameraHint, PlaneVisual, Scene
 from .simulation import Simulation
 from .springs import AnchoredBungee, AnchoredSpring, Bungee, FakeSpring, Spring
@@ -38,6 +51,25 @@ from .stability import UnstableStepError
 from .world import StepStats, World
 
 __version__ = "0.1.0"
+
+
+def render(scene, path, *, time: float = 0.0, size=(1280, 720), overrides=(),
+           overwrite: bool = False):
+    """Write a PNG of ``scene`` at simulated ``time`` [s], offscreen (EGL; no display needed).
+
+    ``scene`` is a Scene, a Simulation, a demo name or a demo's ``.py`` path; ``size`` is
+    (width, height) in pixels; ``overrides`` are a demo's ``"name=value"`` settings. The
+    simulation is advanced in fixed steps from where it is to ``time`` (a Scene or a
+    Simulation already past ``time`` is drawn where it is). Returns the path written. Imports
+    the renderer (moderngl) only when called.
+    """
+    from .extras import require
+
+    require("render", "pointmass.render (a PNG)")
+    from .render.snapshot import render_png
+
+    return render_png(scene, path, time=time, size=size, overrides=overrides,
+                      overwrite=overwrite)
 
 
 def show(scene, **options):
@@ -56,10 +88,12 @@ def show(scene, **options):
 
 
 __all__ = [
-    "AnchoredBungee", "AnchoredCable", "AnchoredRod", "AnchoredSpring", "Box", "BoxVisual",
-    "Bungee", "Buoyancy", "Cable", "CameraHint", "ContactBuffer", "ContactGenerator",
-    "CustomForce", "Drag", "FakeSpring", "ForceGenerator", "Gravity", "Ground", "Particle",
-    "Particles", "Plane", "PlaneVisual", "Probe", "Rod", "Scene", "Simulation", "SphereCollisions",
-    "Spring",
-    "StepStats", "UnstableStepError", "World", "choice", "probes", "show", "stability", "tweak",
+    "Aero", "AeroControl", "AnchoredBodySpring", "AnchoredBungee", "AnchoredCable", "AnchoredRod",
+    "AnchoredSpring", "BallJoint", "Bodies", "Body", "BodyBuoyancy", "BodyForce",
+    "BodyForceGenerator", "BodySpring", "Box", "BoxContainer", "BoxVisual", "Bungee", "Buoyancy",
+    "Cable", "CameraHint", "ContactBuffer", "ContactGenerator", "CustomForce", "Drag",
+    "Explosion", "FakeSpring", "ForceGenerator", "Gravity", "Ground", "HingeJoint", "Joint",
+    "Particle", "Particles", "Plane", "PlaneVisual", "Probe", "Rod", "Scene", "Simulation",
+    "Sphere", "SphereCollisions", "Spring", "StepStats", "UnstableStepError", "World", "choice",
+    "probes", "render", "show", "stability", "tweak",
 ]

@@ -148,8 +148,10 @@ class Ground(Plane):
         return self.offset
 
 
-class Box(ContactGenerator):
-    """The inside of an axis-aligned box: a floor, four walls and optionally a ceiling.
+class BoxContainer(ContactGenerator):
+    """The inside of an axis-aligned box that keeps particles in: a floor, four walls and
+    optionally a ceiling. (Formerly ``pointmass.Box``; that name is now the rigid-body shape,
+    ``pointmass.rigid.shapes.Box``.)
 
     Args:
         low, high: Opposite corners [m]; low < high on every axis.

@@ -380,8 +380,8 @@ class World:
         ``friction`` μ ≥ 0 and ``restitution`` in [0, 1] of its surface (a contact uses
         √(μa·μb) and the larger e; a plane counts as a surface). See ``Bodies.add``."""
         if shape is None:
-            raise ValueError("shape must be a Sphere or a Box (pointmass.rigid.shapes); a body "
-                             "without a shape cannot collide: use world.bodies.add for one")
+            raise ValueError("shape must be a pm.Sphere or a pm.Box (pointmass.rigid.shapes); a "
+                             "body without a shape cannot collide: use world.bodies.add for one")
         if density is None and mass is None:
             density = 1000.0
         index = self.bodies.add(position, orientation, velocity, angular_velocity, shape=shape,
