@@ -54,14 +54,15 @@ __version__ = "0.1.0"
 
 
 def render(scene, path, *, time: float = 0.0, size=(1280, 720), overrides=(),
-           overwrite: bool = False):
+           overwrite: bool = True):
     """Write a PNG of ``scene`` at simulated ``time`` [s], offscreen (EGL; no display needed).
 
     ``scene`` is a Scene, a Simulation, a demo name or a demo's ``.py`` path; ``size`` is
     (width, height) in pixels; ``overrides`` are a demo's ``"name=value"`` settings. The
     simulation is advanced in fixed steps from where it is to ``time`` (a Scene or a
-    Simulation already past ``time`` is drawn where it is). Returns the path written. Imports
-    the renderer (moderngl) only when called.
+    Simulation already past ``time`` is drawn where it is). An existing file is replaced unless
+    ``overwrite=False``. Returns the path written. Imports the renderer (moderngl) only when
+    called.
     """
     from .extras import require
 

@@ -378,7 +378,8 @@ class World:
         ``Body`` handle. Mass from ``density`` [kg/m³] (1000, water, when neither is given) or
         ``mass`` [kg], in (0, inf] (inf: static); orientation a quaternion (w, x, y, z);
         ``friction`` μ ≥ 0 and ``restitution`` in [0, 1] of its surface (a contact uses
-        √(μa·μb) and the larger e; a plane counts as a surface). See ``Bodies.add``."""
+        √(μa·μb) and the larger e; a plane counts as a surface, and one left at its default
+        material leaves the body's own). See ``Bodies.add``."""
         if shape is None:
             raise ValueError("shape must be a pm.Sphere or a pm.Box (pointmass.rigid.shapes); a "
                              "body without a shape cannot collide: use world.bodies.add for one")

@@ -64,12 +64,13 @@ def render_frame(simulation, size: tuple[int, int] = (1280, 720), *, time: float
 
 def render_png(source, path: str | Path, *, time: float = 0.0,
                size: tuple[int, int] = (1280, 720), overrides=(),
-               overwrite: bool = False) -> Path:
+               overwrite: bool = True) -> Path:
     """``pointmass.render``: write one picture of ``source`` (a Scene, a Simulation, a demo
     name or ``.py`` path) after ``time`` more simulated seconds [s] to ``path``; returns it.
 
     A Scene or a Simulation goes on from where it is (and is left there); a demo starts at 0.
-    An existing file is kept unless ``overwrite``. The format follows the suffix (.png, .jpg)."""
+    An existing file is replaced (as ``savefig`` does) unless ``overwrite=False``. The format
+    follows the suffix (.png, .jpg)."""
     from .. import _validate as check
     from ..simulation import Simulation
 
@@ -82,7 +83,7 @@ def render_png(source, path: str | Path, *, time: float = 0.0,
     if path.suffix.lower() not in (".png", ".jpg", ".jpeg", ".bmp", ".tif", ".tiff", ".webp"):
         raise ValueError(f"path must name an image file (.png, .jpg), got {str(path)!r}")
     if path.exists() and not overwrite:
-        raise FileExistsError(f"{path} exists; pass overwrite=True to replace it")
+        raise FileExistsError(f"{path} exists (overwrite=False)")
     path = check_writable(path)
     sim = source if isinstance(source, Simulation) else Simulation(source,
                                                                     overrides=list(overrides))
