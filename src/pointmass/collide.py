@@ -105,6 +105,11 @@ class Plane(ContactGenerator):
             for particles, and each rigid body's own for bodies.
     """
 
+    #: The μ and e rigid bodies combine with theirs (√(μa·μb), the larger e), or None when
+    #: not set: each body then keeps its own.
+    body_friction: float | None
+    body_restitution: float | None
+
     def __init__(self, normal=(0.0, 1.0, 0.0), offset: float = 0.0, *,
                  restitution: float | None = None, particles=None, margin: float | None = None,
                  friction: float | None = None) -> None:
@@ -127,9 +132,10 @@ class Plane(ContactGenerator):
 
     @restitution.setter
     def restitution(self, value: float | None) -> None:
-        # body_restitution: the e rigid bodies combine with theirs, or None (each body's own)
-        self.body_restitution = None if value is None else restitution_value(value)
-        self._restitution = PARTICLE_RESTITUTION if value is None else self.body_restitution
+        if value is None:
+            self._restitution, self.body_restitution = PARTICLE_RESTITUTION, None
+        else:
+            self._restitution = self.body_restitution = restitution_value(value)
 
     @property
     def friction(self) -> float:
@@ -138,9 +144,10 @@ class Plane(ContactGenerator):
 
     @friction.setter
     def friction(self, value: float | None) -> None:
-        # body_friction: the μ rigid bodies combine with theirs, or None (each body's own)
-        self.body_friction = None if value is None else friction_value(value)
-        self._friction = PARTICLE_FRICTION if value is None else self.body_friction
+        if value is None:
+            self._friction, self.body_friction = PARTICLE_FRICTION, None
+        else:
+            self._friction = self.body_friction = friction_value(value)
 
     @property
     def serial(self) -> int:
@@ -262,10 +269,23 @@ class SphereCollisions(ContactGenerator):
         self._key_base = plane_key_base()
         self._pairs = PairList()  # candidate pairs kept between steps (sphere_pairs.py)
 
-    restitution = property(lambda self: self._restitution, lambda self, v: setattr(
-        self, "_restitution", restitution_value(v)), doc="Coefficient of restitution [0, 1].")
-    friction = property(lambda self: self._friction, lambda self, v: setattr(
-        self, "_friction", friction_value(v)), doc="Coulomb friction coefficient μ ≥ 0.")
+    @property
+    def restitution(self) -> float:
+        """Coefficient of restitution [0, 1]."""
+        return self._restitution
+
+    @restitution.setter
+    def restitution(self, value: float) -> None:
+        self._restitution = restitution_value(value)
+
+    @property
+    def friction(self) -> float:
+        """Coulomb friction coefficient μ ≥ 0."""
+        return self._friction
+
+    @friction.setter
+    def friction(self, value: float) -> None:
+        self._friction = friction_value(value)
 
     def validate(self, particles: Particles) -> None:
         self._sel.validate(particles)

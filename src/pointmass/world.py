@@ -5,6 +5,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 from functools import partial
+from typing import Any
 
 import numpy as np
 from numba import njit, prange
@@ -268,7 +269,7 @@ class World:
         self._steps = 0
         #: This step's generators, split by ``forces.fold``: (those that add to the
         #: accumulator, gravity + the folded accelerations, drag k1, k2).
-        self._folded = ([], self._gravity, 0.0, 0.0)
+        self._folded: tuple[list, Any, float, float] = ([], self._gravity, 0.0, 0.0)
 
     # -- settings, checked on assignment --------------------------------------------------------
     @property
@@ -430,7 +431,9 @@ class World:
         spring to a dropped particle fails here, naming it, instead of reading a stale row."""
         count = self.particles.count
         if count < self._checked_count:
-            for generator in (*self.forces, *self.contact_generators):
+            generators: list[ForceGenerator | ContactGenerator] = [*self.forces,
+                                                                   *self.contact_generators]
+            for generator in generators:
                 try:
                     generator.validate(self.particles)
                 except (IndexError, ValueError) as error:
@@ -680,6 +683,7 @@ class World:
                 [acc, p.acceleration[packed.selected]])
             if live is None:
                 return packed, full
+            assert links is not None  # ``live`` is only set with sleeping on, as ``links``
             woken = sleeping.touched(b, self.body_contacts, packed, full, dt, links, live)
             if not woken.any():
                 sleeping.leave_sleepers_out(b, self.body_contacts, packed)

@@ -75,10 +75,11 @@ def render_png(source, path: str | Path, *, time: float = 0.0,
     from ..simulation import Simulation
 
     time = check.scalar(time, "time", low=0.0, high=3600.0)
-    size = tuple(size)
-    if len(size) != 2 or not all(isinstance(v, int) and not isinstance(v, bool) and 0 < v <= 8192
-                                 for v in size):
+    given = tuple(size)
+    if len(given) != 2 or not all(isinstance(v, int) and not isinstance(v, bool)
+                                  and 0 < v <= 8192 for v in given):
         raise ValueError(f"size must be (width, height) in pixels, each 1 to 8192, got {size!r}")
+    size = (given[0], given[1])
     path = Path(path)
     if path.suffix.lower() not in (".png", ".jpg", ".jpeg", ".bmp", ".tif", ".tiff", ".webp"):
         raise ValueError(f"path must name an image file (.png, .jpg), got {str(path)!r}")
