@@ -23,6 +23,7 @@ from .rigid.forces import BodyForceGenerator
 from .rigid.joint_set import Joints
 from .rigid.joints import Joint
 from .rigid.particle_body import add_particle_contacts
+from .rigid.shapes import Box, Sphere
 from .rigid.step import integrate_positions, integrate_velocities
 from .solver import ImpulseHistory, Solver, SolveStats
 from .stability import jump_check, needs_jump_check
@@ -419,9 +420,13 @@ class World:
             self._checked_bodies = max(self._checked_bodies, self.bodies.count)
             return generator
         else:
+            hint = ""
+            if isinstance(generator, (Box, Sphere)):  # the rigid shapes, pm.Box and pm.Sphere
+                hint = (f"; a {type(generator).__name__} is a rigid body's shape: "
+                        f"world.add_body(shape, position, ...) (walls that keep particles in "
+                        f"are pm.BoxContainer)")
             raise TypeError(f"world.add takes a ForceGenerator, BodyForceGenerator, Joint or "
-                            f"ContactGenerator, got "
-                            f"{type(generator).__name__}")
+                            f"ContactGenerator, got {type(generator).__name__}{hint}")
         self._checked_count = max(self._checked_count, self.particles.count)
         return generator
 

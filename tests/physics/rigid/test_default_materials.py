@@ -5,6 +5,7 @@ e = 0.5 ground; a material given to the ground combines with the body's (√(μa
 from __future__ import annotations
 
 import numpy as np
+import pytest
 
 import pointmass as pm
 
@@ -108,3 +109,10 @@ def test_setting_a_ground_material_later_applies_to_bodies_and_none_resets_it():
     ground.restitution = None
     assert (ground.friction, ground.restitution) == (0.0, 0.5)
     assert (ground.body_friction, ground.body_restitution) == (None, None)
+
+
+def test_adding_a_rigid_shape_as_a_generator_says_what_to_do():
+    """``world.add(pm.Box(...))`` (the old name of the particle container) names add_body and
+    pm.BoxContainer."""
+    with pytest.raises(TypeError, match=r"add_body.*pm\.BoxContainer"):
+        pm.World().add(pm.Box((1.0, 1.0, 1.0)))
