@@ -23,7 +23,7 @@ import pointmass
 ROOT = Path(__file__).resolve().parents[2]
 NOTEBOOK = ROOT / "docs" / "cookbook.ipynb"
 #: The stored notebook (with its plots and clip) must stay light enough to read on GitHub: its
-#: eight plots are drawn ~550 px wide to be readable (about 45 kB each), the clip ~20 kB.
+#: eight plots are drawn 400–560 px wide to be readable (20–70 kB each; 386 kB in all).
 MAX_BYTES = 450_000
 KERNEL = "pointmass-notebook-test"
 
