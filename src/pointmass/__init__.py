@@ -55,14 +55,16 @@ __version__ = "0.1.0"
 
 def render(scene, path, *, time: float = 0.0, size=(1280, 720), overrides=(),
            overwrite: bool = True):
-    """Write a PNG of ``scene`` at simulated ``time`` [s], offscreen (EGL; no display needed).
+    """Write a picture (PNG, or JPEG by the suffix) of ``scene`` offscreen (EGL; no display
+    needed) after ``time`` more simulated seconds [s].
 
-    ``scene`` is a Scene, a Simulation, a demo name or a demo's ``.py`` path; ``size`` is
-    (width, height) in pixels; ``overrides`` are a demo's ``"name=value"`` settings. The
-    simulation is advanced in fixed steps from where it is to ``time`` (a Scene or a
-    Simulation already past ``time`` is drawn where it is). An existing file is replaced unless
-    ``overwrite=False``. Returns the path written. Imports the renderer (moderngl) only when
-    called.
+    ``scene`` is a Scene, a Simulation, a demo name or a demo's ``.py`` path; a Scene or a
+    Simulation goes on from where it is, in its fixed steps, and is left there (a demo starts
+    at 0, so ``time`` is its clock). ``size`` is (width, height) in pixels; ``overrides`` are a
+    demo's ``"name=value"`` settings. An existing file is replaced unless ``overwrite=False``.
+    Returns the path written. Imports the renderer (moderngl) only when called.
+
+        >>> pm.render("projectile", "shot.png", time=2.0, size=(640, 360))  # doctest: +SKIP
     """
     from .extras import require
 
