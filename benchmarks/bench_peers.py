@@ -63,7 +63,7 @@ def pointmass_pit(pos: np.ndarray, side: float) -> pm.World:
     """The pit in a default pointmass World (also reference_dem_pit.py's)."""
     world = pm.World()
     world.add_particles(pos, radii=R)
-    world.add(pm.Box((-side / 2, 0, -side / 2), (side / 2, 100, side / 2), restitution=E))
+    world.add(pm.BoxContainer((-side / 2, 0, -side / 2), (side / 2, 100, side / 2), restitution=E))
     world.add(pm.SphereCollisions(restitution=E))
     return world
 

@@ -110,7 +110,7 @@ def ball_pit(n: int, damping: float, friction: float = 0.0) -> pm.World:
     pos, half = pit_layout(n)
     world = pm.World(gravity=(0, -9.81, 0))
     world.add_particles(pos, radii=RADIUS, damping=damping)
-    world.add(pm.Box((-half, 0.0, -half), (half, 100.0, half), restitution=0.5,
+    world.add(pm.BoxContainer((-half, 0.0, -half), (half, 100.0, half), restitution=0.5,
                      friction=friction))
     world.add(pm.SphereCollisions(restitution=0.5, friction=friction))
     return world

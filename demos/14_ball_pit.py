@@ -18,7 +18,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from pointmass import Box, BoxVisual, CameraHint, Scene, SphereCollisions, World, tweak
+from pointmass import BoxContainer, BoxVisual, CameraHint, Scene, SphereCollisions, World, tweak
 
 TITLE = "Ball pit"
 RADIUS = 0.1
@@ -53,8 +53,8 @@ def build(p: Params) -> Scene:
     parked = np.column_stack([k % side, np.zeros(p.count), k // side]) * 3 * RADIUS
     parked += (-1.5 * RADIUS * side, PARK_DEPTH, -1.5 * RADIUS * side)
     world.add_particles(parked, radii=RADIUS, masses=np.inf)
-    box = world.add(Box((-half, 0.0, -half), (half, 100.0, half), restitution=p.restitution,
-                        friction=p.friction))
+    box = world.add(BoxContainer((-half, 0.0, -half), (half, 100.0, half),
+                                 restitution=p.restitution, friction=p.friction))
     spheres = world.add(SphereCollisions(restitution=p.restitution, friction=p.friction))
     # Colors by pour order: the first spheres red at the bottom, the last blue on top.
     order = k / max(p.count - 1, 1)

@@ -24,13 +24,26 @@ import os as _os
 _os.environ.setdefault("OMP_WAIT_POLICY", "PASSIVE")
 
 from . import probes, stability
-from .collide import Box, Ground, Plane, SphereCollisions
+from .collide import BoxContainer, Ground, Plane, SphereCollisions
 from .contacts import ContactBuffer, ContactGenerator
 from .forces import Buoyancy, CustomForce, Drag, ForceGenerator, Gravity
 from .links import AnchoredCable, AnchoredRod, Cable, Rod
 from .params import choice, tweak
 from .particles import Particle, Particles
 from .probes import Probe
+from .rigid.bodies import Bodies, Body
+from .rigid.forces import (
+    Aero,
+    AeroControl,
+    AnchoredBodySpring,
+    BodyBuoyancy,
+    BodyForce,
+    BodyForceGenerator,
+    BodySpring,
+    Explosion,
+)
+from .rigid.joints import BallJoint, HingeJoint, Joint
+from .rigid.shapes import Box, Sphere
 from .scene import BoxVisual, CameraHint, PlaneVisual, Scene
 from .simulation import Simulation
 from .springs import AnchoredBungee, AnchoredSpring, Bungee, FakeSpring, Spring
@@ -38,6 +51,28 @@ from .stability import UnstableStepError
 from .world import StepStats, World
 
 __version__ = "0.1.0"
+
+
+def render(scene, path, *, time: float = 0.0, size=(1280, 720), overrides=(),
+           overwrite: bool = True):
+    """Write a picture (PNG, or JPEG by the suffix) of ``scene`` offscreen (EGL; no display
+    needed) after ``time`` more simulated seconds [s].
+
+    ``scene`` is a Scene, a Simulation, a demo name or a demo's ``.py`` path; a Scene or a
+    Simulation goes on from where it is, in its fixed steps, and is left there (a demo starts
+    at 0, so ``time`` is its clock). ``size`` is (width, height) in pixels; ``overrides`` are a
+    demo's ``"name=value"`` settings. An existing file is replaced unless ``overwrite=False``.
+    Returns the path written. Imports the renderer (moderngl) only when called.
+
+        >>> pm.render("projectile", "shot.png", time=2.0, size=(640, 360))  # doctest: +SKIP
+    """
+    from .extras import require
+
+    require("render", "pointmass.render (a PNG)")
+    from .render.snapshot import render_png
+
+    return render_png(scene, path, time=time, size=size, overrides=overrides,
+                      overwrite=overwrite)
 
 
 def show(scene, **options):
@@ -56,10 +91,12 @@ def show(scene, **options):
 
 
 __all__ = [
-    "AnchoredBungee", "AnchoredCable", "AnchoredRod", "AnchoredSpring", "Box", "BoxVisual",
-    "Bungee", "Buoyancy", "Cable", "CameraHint", "ContactBuffer", "ContactGenerator",
-    "CustomForce", "Drag", "FakeSpring", "ForceGenerator", "Gravity", "Ground", "Particle",
-    "Particles", "Plane", "PlaneVisual", "Probe", "Rod", "Scene", "Simulation", "SphereCollisions",
-    "Spring",
-    "StepStats", "UnstableStepError", "World", "choice", "probes", "show", "stability", "tweak",
+    "Aero", "AeroControl", "AnchoredBodySpring", "AnchoredBungee", "AnchoredCable", "AnchoredRod",
+    "AnchoredSpring", "BallJoint", "Bodies", "Body", "BodyBuoyancy", "BodyForce",
+    "BodyForceGenerator", "BodySpring", "Box", "BoxContainer", "BoxVisual", "Bungee", "Buoyancy",
+    "Cable", "CameraHint", "ContactBuffer", "ContactGenerator", "CustomForce", "Drag",
+    "Explosion", "FakeSpring", "ForceGenerator", "Gravity", "Ground", "HingeJoint", "Joint",
+    "Particle", "Particles", "Plane", "PlaneVisual", "Probe", "Rod", "Scene", "Simulation",
+    "Sphere", "SphereCollisions", "Spring", "StepStats", "UnstableStepError", "World", "choice",
+    "probes", "render", "show", "stability", "tweak",
 ]

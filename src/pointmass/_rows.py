@@ -6,6 +6,7 @@ step, 54 were 28 % of a sleeping 10-box tower's)."""
 from __future__ import annotations
 
 from operator import attrgetter
+from typing import Any
 
 
 class RowViews:
@@ -30,6 +31,7 @@ class RowViews:
         self._refresh_views()
 
 
-def view(name: str, doc: str) -> property:
-    """The property returning the view of field ``name`` (see ``RowViews``)."""
+def view(name: str, doc: str) -> Any:
+    """The property returning the view of field ``name`` (see ``RowViews``). Typed ``Any`` so
+    that a type checker reads the attribute as the array it returns, not as a property."""
     return property(attrgetter("_view_" + name), doc=doc)

@@ -16,6 +16,13 @@ close within the step (see ``resolver.py``) — the speculative contacts of Box2
 
 **Friction.** Every generator takes ``friction`` μ ≥ 0 (default 0, frictionless as in the book):
 the Coulomb coefficient written into each contact it reports (see ``resolver.py``).
+
+**Materials of planes for rigid bodies.** A ``Plane``/``Ground`` left at its default material
+(``friction`` and ``restitution`` not given) is neutral for rigid bodies: a body touching it
+uses its own μ and e (``World.add_body``'s ``friction=0.5, restitution=0``), so a box on a
+default ground grips and settles, while particles keep the book's numbers (μ = 0, e = 0.5). A
+value given (or set later) applies to both, and a body's contact combines it with its own:
+μ = √(μ_body·μ_plane), e = max(e_body, e_plane), as between two bodies.
 """
 
 from __future__ import annotations
@@ -29,6 +36,11 @@ from .forces import _Selection
 from .keys import plane_key_base, plane_serial
 from .particles import Particles
 from .sphere_pairs import PairList, pair_contacts, sweep_lengths
+
+#: The material a plane left at its defaults gives particle contacts: the book's e = 0.5 and no
+#: friction (the cookbook's numbers). Rigid bodies use their own material on such a plane.
+PARTICLE_RESTITUTION = 0.5
+PARTICLE_FRICTION = 0.0
 
 #: Default contact margin, as a fraction of each particle's radius (see the module docstring).
 #: Fast pairs are found by their sweep (|v|·dt) whatever the margin; the margin only has to
@@ -84,15 +96,23 @@ class Plane(ContactGenerator):
     Args:
         normal: Plane normal (normalised here), pointing into the free side.
         offset: n·x on the plane [m].
-        restitution: In [0, 1].
+        restitution: In [0, 1]; None (the default): 0.5 for particles, and each rigid body's
+            own for bodies (see the module docstring, "Materials").
         particles: Indices that collide with it, or None for all.
         margin: Report a contact when the gap is below this [m], ≥ 0 (a speculative contact
             with negative penetration); None: 2 % of each particle's radius.
-        friction: Coulomb friction coefficient μ ≥ 0 (0: frictionless).
+        friction: Coulomb friction coefficient μ ≥ 0; None (the default): 0 (frictionless)
+            for particles, and each rigid body's own for bodies.
     """
 
-    def __init__(self, normal=(0.0, 1.0, 0.0), offset: float = 0.0, *, restitution: float = 0.5,
-                 particles=None, margin: float | None = None, friction: float = 0.0) -> None:
+    #: The μ and e rigid bodies combine with theirs (√(μa·μb), the larger e), or None when
+    #: not set: each body then keeps its own.
+    body_friction: float | None
+    body_restitution: float | None
+
+    def __init__(self, normal=(0.0, 1.0, 0.0), offset: float = 0.0, *,
+                 restitution: float | None = None, particles=None, margin: float | None = None,
+                 friction: float | None = None) -> None:
         n = check.vec3(normal, "normal")
         length = float(np.linalg.norm(n))
         if length == 0.0:
@@ -105,10 +125,29 @@ class Plane(ContactGenerator):
         self._sel = _Selection(particles)
         self._key_base = plane_key_base()
 
-    restitution = property(lambda self: self._restitution, lambda self, v: setattr(
-        self, "_restitution", restitution_value(v)), doc="Coefficient of restitution [0, 1].")
-    friction = property(lambda self: self._friction, lambda self, v: setattr(
-        self, "_friction", friction_value(v)), doc="Coulomb friction coefficient μ ≥ 0.")
+    @property
+    def restitution(self) -> float:
+        """Coefficient of restitution [0, 1] of particle contacts (0.5 unless set)."""
+        return self._restitution
+
+    @restitution.setter
+    def restitution(self, value: float | None) -> None:
+        if value is None:
+            self._restitution, self.body_restitution = PARTICLE_RESTITUTION, None
+        else:
+            self._restitution = self.body_restitution = restitution_value(value)
+
+    @property
+    def friction(self) -> float:
+        """Coulomb friction coefficient μ ≥ 0 of particle contacts (0 unless set)."""
+        return self._friction
+
+    @friction.setter
+    def friction(self, value: float | None) -> None:
+        if value is None:
+            self._friction, self.body_friction = PARTICLE_FRICTION, None
+        else:
+            self._friction = self.body_friction = friction_value(value)
 
     @property
     def serial(self) -> int:
@@ -138,8 +177,8 @@ class Plane(ContactGenerator):
 class Ground(Plane):
     """The horizontal ground y = ``height`` (Cyclone's GroundContacts, at any height)."""
 
-    def __init__(self, height: float = 0.0, *, restitution: float = 0.5, particles=None,
-                 margin: float | None = None, friction: float = 0.0) -> None:
+    def __init__(self, height: float = 0.0, *, restitution: float | None = None, particles=None,
+                 margin: float | None = None, friction: float | None = None) -> None:
         super().__init__((0.0, 1.0, 0.0), height, restitution=restitution, particles=particles,
                          margin=margin, friction=friction)
 
@@ -148,21 +187,23 @@ class Ground(Plane):
         return self.offset
 
 
-class Box(ContactGenerator):
-    """The inside of an axis-aligned box: a floor, four walls and optionally a ceiling.
+class BoxContainer(ContactGenerator):
+    """The inside of an axis-aligned box that keeps particles in: a floor, four walls and
+    optionally a ceiling. (Formerly ``pointmass.Box``; that name is now the rigid-body shape,
+    ``pointmass.rigid.shapes.Box``.)
 
     Args:
         low, high: Opposite corners [m]; low < high on every axis.
-        restitution: In [0, 1].
+        restitution: In [0, 1] (None: 0.5, as ``Plane``).
         ceiling: Also keep particles below ``high[1]``.
         particles: Indices that collide with it, or None for all.
         margin: Contact margin [m], as for ``Plane``.
-        friction: Coulomb friction coefficient μ ≥ 0 of every face (0: frictionless).
+        friction: Coulomb friction coefficient μ ≥ 0 of every face (None: 0, frictionless).
     """
 
     def __init__(self, low=(-5.0, 0.0, -5.0), high=(5.0, 10.0, 5.0), *,
-                 restitution: float = 0.5, ceiling: bool = False, particles=None,
-                 margin: float | None = None, friction: float = 0.0) -> None:
+                 restitution: float | None = None, ceiling: bool = False, particles=None,
+                 margin: float | None = None, friction: float | None = None) -> None:
         self.low = check.vec3(low, "low")
         self.high = check.vec3(high, "high")
         if not (self.low < self.high).all():
@@ -172,7 +213,7 @@ class Box(ContactGenerator):
                  ((0, 0, 1), self.low[2]), ((0, 0, -1), -self.high[2])]
         if ceiling:
             faces.append(((0, -1, 0), -self.high[1]))
-        friction = friction_value(friction)
+        friction = None if friction is None else friction_value(friction)
         self.planes = [Plane(n, d, restitution=restitution, particles=particles, margin=margin,
                              friction=friction) for n, d in faces]
         self.ceiling = ceiling
@@ -182,7 +223,7 @@ class Box(ContactGenerator):
         return self.planes[0].restitution
 
     @restitution.setter
-    def restitution(self, value: float) -> None:
+    def restitution(self, value: float | None) -> None:
         for plane in self.planes:
             plane.restitution = value
 
@@ -191,8 +232,8 @@ class Box(ContactGenerator):
         return self.planes[0].friction
 
     @friction.setter
-    def friction(self, value: float) -> None:
-        value = friction_value(value)
+    def friction(self, value: float | None) -> None:
+        value = None if value is None else friction_value(value)
         for plane in self.planes:
             plane.friction = value
 
@@ -228,10 +269,23 @@ class SphereCollisions(ContactGenerator):
         self._key_base = plane_key_base()
         self._pairs = PairList()  # candidate pairs kept between steps (sphere_pairs.py)
 
-    restitution = property(lambda self: self._restitution, lambda self, v: setattr(
-        self, "_restitution", restitution_value(v)), doc="Coefficient of restitution [0, 1].")
-    friction = property(lambda self: self._friction, lambda self, v: setattr(
-        self, "_friction", friction_value(v)), doc="Coulomb friction coefficient μ ≥ 0.")
+    @property
+    def restitution(self) -> float:
+        """Coefficient of restitution [0, 1]."""
+        return self._restitution
+
+    @restitution.setter
+    def restitution(self, value: float) -> None:
+        self._restitution = restitution_value(value)
+
+    @property
+    def friction(self) -> float:
+        """Coulomb friction coefficient μ ≥ 0."""
+        return self._friction
+
+    @friction.setter
+    def friction(self, value: float) -> None:
+        self._friction = friction_value(value)
 
     def validate(self, particles: Particles) -> None:
         self._sel.validate(particles)

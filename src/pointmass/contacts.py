@@ -40,6 +40,17 @@ class ContactBuffer:
             (``solver/remeasure.py``), as it does a contact between two particles.
     """
 
+    # The storage ``_alloc`` makes (declared for type checkers).
+    _a: np.ndarray
+    _b: np.ndarray
+    _normal: np.ndarray
+    _penetration: np.ndarray
+    _restitution: np.ndarray
+    _key: np.ndarray
+    _friction: np.ndarray
+    _bilateral: np.ndarray
+    _anchor: np.ndarray
+
     def __init__(self, capacity: int = 64) -> None:
         self.count = 0
         #: The step these contacts are for [s] (the world sets it; 0: no speculative reach by
@@ -95,14 +106,37 @@ class ContactBuffer:
     def __len__(self) -> int:
         return self.count
 
-    a = property(lambda self: self._a[: self.count])
-    b = property(lambda self: self._b[: self.count])
-    normal = property(lambda self: self._normal[: self.count])
-    penetration = property(lambda self: self._penetration[: self.count])
-    restitution = property(lambda self: self._restitution[: self.count])
-    key = property(lambda self: self._key[: self.count])
-    friction = property(lambda self: self._friction[: self.count])
-    bilateral = property(lambda self: self._bilateral[: self.count])
+    @property
+    def a(self) -> np.ndarray:
+        return self._a[: self.count]
+
+    @property
+    def b(self) -> np.ndarray:
+        return self._b[: self.count]
+
+    @property
+    def normal(self) -> np.ndarray:
+        return self._normal[: self.count]
+
+    @property
+    def penetration(self) -> np.ndarray:
+        return self._penetration[: self.count]
+
+    @property
+    def restitution(self) -> np.ndarray:
+        return self._restitution[: self.count]
+
+    @property
+    def key(self) -> np.ndarray:
+        return self._key[: self.count]
+
+    @property
+    def friction(self) -> np.ndarray:
+        return self._friction[: self.count]
+
+    @property
+    def bilateral(self) -> np.ndarray:
+        return self._bilateral[: self.count]
 
     @property
     def anchors(self) -> np.ndarray | None:

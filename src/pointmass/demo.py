@@ -111,6 +111,8 @@ def load_demo(name_or_path: str | Path) -> Demo:
         path = matches[0]
     module_name = f"pointmass_demo_{demo_name(path)}"
     spec = importlib.util.spec_from_file_location(module_name, path)
+    if spec is None or spec.loader is None:
+        raise ValueError(f"cannot load {path} as a Python module")
     module = importlib.util.module_from_spec(spec)
     sys.modules[module_name] = module  # dataclasses look their module up while being built
     spec.loader.exec_module(module)

@@ -115,6 +115,7 @@ class _Selection:
             return self._all
         if self._checked is None:
             self.validate(store)
+        assert self._checked is not None  # validate sets it (or raises)
         return self._checked
 
 
@@ -209,8 +210,15 @@ class Drag(ForceGenerator):
     @k1.setter
     def k1(self, value) -> None:
         self._k1 = check.scalar(value, "k1", low=0.0)
-    k2 = property(lambda self: self._k2, lambda self, v: setattr(
-        self, "_k2", check.scalar(v, "k2", low=0.0)), doc="Quadratic drag coefficient [N·s²/m²].")
+
+    @property
+    def k2(self) -> float:
+        """Quadratic drag coefficient [N·s²/m²]."""
+        return self._k2
+
+    @k2.setter
+    def k2(self, value: float) -> None:
+        self._k2 = check.scalar(value, "k2", low=0.0)
 
     def validate(self, particles: Particles) -> None:
         self._sel.validate(particles)
@@ -269,9 +277,14 @@ class Buoyancy(ForceGenerator):
         self.gravity = check.scalar(gravity, "gravity", low=0.0)
         self._sel = _Selection(particles)
 
-    liquid_density = property(lambda self: self._rho, lambda self, v: setattr(
-        self, "_rho", check.scalar(v, "liquid_density", low=0.0)),
-        doc="Liquid density [kg/m³].")
+    @property
+    def liquid_density(self) -> float:
+        """Liquid density [kg/m³]."""
+        return self._rho
+
+    @liquid_density.setter
+    def liquid_density(self, value: float) -> None:
+        self._rho = check.scalar(value, "liquid_density", low=0.0)
 
     def validate(self, particles: Particles) -> None:
         self._sel.validate(particles)

@@ -102,8 +102,13 @@ class Cable(_Links):
         self._init_pairs(a, b, max_length, "max_length")
         self.restitution = restitution
 
-    restitution = property(lambda self: self._restitution, lambda self, v: setattr(
-        self, "_restitution", restitution_value(v)))
+    @property
+    def restitution(self) -> float:
+        return self._restitution
+
+    @restitution.setter
+    def restitution(self, value: float) -> None:
+        self._restitution = restitution_value(value)
 
     @property
     def max_length(self) -> np.ndarray:

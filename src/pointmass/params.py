@@ -55,7 +55,7 @@ class ParamSpec:
                 raise self._refuse(value)
             return bool(value)
         if self.kind is str:
-            if value not in self.choices:
+            if value not in (self.choices or ()):
                 raise self._refuse(value)
             return value
         try:
@@ -68,7 +68,9 @@ class ParamSpec:
                 raise ValueError(f"parameter {self.name!r} must be an integer in "
                                  f"{self.range_text}, got {value!r}")
             number = int(number)
-        if not (math.isfinite(number) and self.low <= number <= self.high):
+        lowest = -math.inf if self.low is None else self.low
+        highest = math.inf if self.high is None else self.high
+        if not (math.isfinite(number) and lowest <= number <= highest):
             raise ValueError(f"parameter {self.name!r} must be in {self.range_text}, got {value!r}")
         return number
 

@@ -45,6 +45,15 @@ class Particles(RowViews):
         damping: Fraction of velocity kept per second, in [0, 1], shape (N,); 1 means none.
     """
 
+    # The storage ``_alloc`` makes (setattr by name; declared for type checkers).
+    _position: np.ndarray
+    _velocity: np.ndarray
+    _force: np.ndarray
+    _acceleration: np.ndarray
+    _inv_mass: np.ndarray
+    _radius: np.ndarray
+    _damping: np.ndarray
+
     def __init__(self, capacity: int = 16) -> None:
         self._count = 0
         self._alloc(max(int(capacity), 1))
@@ -53,15 +62,13 @@ class Particles(RowViews):
     def _alloc(self, capacity: int) -> None:
         old = {name: getattr(self, "_" + name, None) for name in _FIELDS_3 + _FIELDS_1}
         n = self._count
-        for name in _FIELDS_3:
-            arr = np.zeros((capacity, 3))
-            if old[name] is not None:
-                arr[:n] = old[name][:n]
-            setattr(self, "_" + name, arr)
-        for name in _FIELDS_1:
-            arr = np.ones(capacity) if name == "damping" else np.zeros(capacity)
-            if old[name] is not None:
-                arr[:n] = old[name][:n]
+        for name in _FIELDS_3 + _FIELDS_1:
+            arr: np.ndarray = np.zeros((capacity, 3) if name in _FIELDS_3 else capacity)
+            if name == "damping":
+                arr[:] = 1.0
+            previous = old[name]
+            if previous is not None:
+                arr[:n] = previous[:n]
             setattr(self, "_" + name, arr)
         self._capacity = capacity
         self._refresh_views()

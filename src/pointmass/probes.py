@@ -21,10 +21,15 @@ from __future__ import annotations
 from collections import deque
 from collections.abc import Callable
 from pathlib import Path
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-Quantity = Callable[[object], object]
+if TYPE_CHECKING:
+    from .world import World
+
+#: What a probe samples: a function of the world, returning a number or an array.
+Quantity = Callable[["World"], Any]
 
 
 class Probe:
@@ -82,7 +87,8 @@ class Probe:
     def to_npz(self, path: str | Path) -> Path:
         """Save times (``t``) and every quantity to a numpy ``.npz``."""
         path = Path(path)
-        np.savez(path, t=self.t, **{name: self[name] for name in self.names()})
+        arrays = {"t": self.t, **{name: self[name] for name in self.names()}}
+        np.savez(path, **arrays)  # type: ignore[arg-type]  # (numpy's stub: allow_pickle)
         return path
 
     def _columns(self) -> tuple[list[str], np.ndarray]:

@@ -24,7 +24,8 @@ class CameraHint:
 
     ``yaw`` turns around the vertical axis and ``pitch`` lifts the eye above the horizon
     (both in degrees); ``fov`` is the vertical field of view in degrees; ``follow`` names a
-    particle to keep in view, ``follow_body`` a rigid body.
+    particle to keep in view, ``follow_body`` a rigid body; ``keep_in_view`` keeps everything
+    drawn in view (the default of a Scene made without a camera).
     """
 
     target: tuple[float, float, float] = (0.0, 1.0, 0.0)
@@ -37,16 +38,23 @@ class CameraHint:
     zooming stay yours), or None for a fixed target."""
     follow_body: int | None = None
     """A rigid body to keep looking at, the same way (``follow`` wins when both are set)."""
+    keep_in_view: bool = False
+    """Keep every drawn particle and body in view: the target moves to the centre of their
+    bounds and the camera backs away when they would leave the view (it never moves in by
+    itself, so nothing pumps). Panning, zooming or focusing in a window hands the camera back
+    to you. ``follow`` and ``follow_body`` win over it."""
 
     @classmethod
     def framing(cls, points, radii=None, *, yaw: float = 30.0, pitch: float = 20.0,
-                fov: float = 45.0, minimum: float = 2.0) -> CameraHint:
+                fov: float = 45.0, minimum: float = 2.0,
+                keep_in_view: bool = False) -> CameraHint:
         """A hint that frames ``points`` (N, 3) [m] with their ``radii`` (N,): the camera looks
         at the centre of their bounds from far enough that a sphere around them, at least
-        ``minimum`` m across, fills about two thirds of the view's height."""
+        ``minimum`` m across, fills about two thirds of the view's height; ``keep_in_view``
+        as the attribute."""
         pts = np.asarray(points, dtype=np.float64).reshape(-1, 3)
         if pts.shape[0] == 0:
-            return cls(yaw=yaw, pitch=pitch, fov=fov)
+            return cls(yaw=yaw, pitch=pitch, fov=fov, keep_in_view=keep_in_view)
         r = np.zeros(len(pts)) if radii is None else np.asarray(radii, np.float64).reshape(-1)
         low = (pts - r[:, None]).min(axis=0)
         high = (pts + r[:, None]).max(axis=0)
@@ -54,7 +62,7 @@ class CameraHint:
         size = max(float(np.linalg.norm(high - low)), minimum)
         distance = (size / 2) / math.tan(math.radians(fov) / 2) / 0.66 + size / 2
         return cls(target=tuple(center.tolist()), distance=distance, yaw=yaw, pitch=pitch,
-                   fov=fov)
+                   fov=fov, keep_in_view=keep_in_view)
 
 
 @dataclass
@@ -95,7 +103,8 @@ class Scene:
     Attributes:
         world: The physics world.
         camera: Where the camera starts; by default it frames the particles and rigid bodies
-            as they are when the scene is made (``CameraHint.framing``).
+            as they are when the scene is made (``CameraHint.framing``) and keeps them in view
+            as they move (``CameraHint.keep_in_view``).
         colors: Per-particle RGB in [0, 1], shape (N, 3), or None for the default palette. May be
             reassigned (or grown) as particles are added.
         hidden: Optional boolean mask (N,) of particles not to draw (dead fireworks, rounds).
@@ -141,7 +150,7 @@ class Scene:
             p, b = self.world.particles, self.world.bodies
             self.camera = CameraHint.framing(
                 np.vstack([p.position, b.position]),
-                np.concatenate([p.radius, np.linalg.norm(b.size, axis=1)]))
+                np.concatenate([p.radius, np.linalg.norm(b.size, axis=1)]), keep_in_view=True)
 
     @property
     def time(self) -> float:

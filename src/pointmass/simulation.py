@@ -186,7 +186,7 @@ class Simulation:
         if self.params is None:
             raise ValueError(f"this scene has no parameters (got {name!r})")
         spec = params_mod.set_param(self.params, name, value)
-        apply = self.demo.hook("apply")
+        apply = self._hook("apply")
         if spec.rebuild or apply is None:
             self.rebuild()
         else:

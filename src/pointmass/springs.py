@@ -220,14 +220,15 @@ class AnchoredSpring(_SpringSet):
 
     def __init__(self, particles, anchor, spring_constant: float = 10.0,
                  rest_length: float = 1.0, *, damping: float = 0.0) -> None:
-        self._sel = _Selection(np.atleast_1d(np.asarray(particles)))
-        count = self._sel._given.shape[0]
+        self._given = np.atleast_1d(np.asarray(particles))
+        self._sel = _Selection(self._given)
+        count = self._given.shape[0]
         self.anchor = check.vec3_array(anchor, "anchor", count).copy()
         self._init_params(count, spring_constant, rest_length, damping)
 
     @property
     def particles(self) -> np.ndarray:
-        return self._sel._checked if self._sel._checked is not None else self._sel._given
+        return self._sel._checked if self._sel._checked is not None else self._given
 
     def validate(self, particles: Particles) -> None:
         self._sel.validate(particles)
@@ -335,8 +336,9 @@ class FakeSpring(ForceGenerator):
     kind = "spring"
 
     def __init__(self, particles, anchor, spring_constant: float, damping: float = 0.0) -> None:
-        self._sel = _Selection(np.atleast_1d(np.asarray(particles)))
-        count = self._sel._given.shape[0]
+        self._given = np.atleast_1d(np.asarray(particles))
+        self._sel = _Selection(self._given)
+        count = self._given.shape[0]
         self.anchor = check.vec3_array(anchor, "anchor", count).copy()
         self.spring_constant = check.scalar(spring_constant, "spring_constant", low=0.0)
         self.damping = check.scalar(damping, "damping", low=0.0)

@@ -5,6 +5,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 from functools import partial
+from typing import Any
 
 import numpy as np
 from numba import njit, prange
@@ -22,6 +23,7 @@ from .rigid.forces import BodyForceGenerator
 from .rigid.joint_set import Joints
 from .rigid.joints import Joint
 from .rigid.particle_body import add_particle_contacts
+from .rigid.shapes import Box, Sphere
 from .rigid.step import integrate_positions, integrate_velocities
 from .solver import ImpulseHistory, Solver, SolveStats
 from .stability import jump_check, needs_jump_check
@@ -268,7 +270,7 @@ class World:
         self._steps = 0
         #: This step's generators, split by ``forces.fold``: (those that add to the
         #: accumulator, gravity + the folded accelerations, drag k1, k2).
-        self._folded = ([], self._gravity, 0.0, 0.0)
+        self._folded: tuple[list, Any, float, float] = ([], self._gravity, 0.0, 0.0)
 
     # -- settings, checked on assignment --------------------------------------------------------
     @property
@@ -378,10 +380,11 @@ class World:
         ``Body`` handle. Mass from ``density`` [kg/m³] (1000, water, when neither is given) or
         ``mass`` [kg], in (0, inf] (inf: static); orientation a quaternion (w, x, y, z);
         ``friction`` μ ≥ 0 and ``restitution`` in [0, 1] of its surface (a contact uses
-        √(μa·μb) and the larger e; a plane counts as a surface). See ``Bodies.add``."""
+        √(μa·μb) and the larger e; a plane counts as a surface, and one left at its default
+        material leaves the body's own). See ``Bodies.add``."""
         if shape is None:
-            raise ValueError("shape must be a Sphere or a Box (pointmass.rigid.shapes); a body "
-                             "without a shape cannot collide: use world.bodies.add for one")
+            raise ValueError("shape must be a pm.Sphere or a pm.Box (pointmass.rigid.shapes); a "
+                             "body without a shape cannot collide: use world.bodies.add for one")
         if density is None and mass is None:
             density = 1000.0
         index = self.bodies.add(position, orientation, velocity, angular_velocity, shape=shape,
@@ -417,9 +420,13 @@ class World:
             self._checked_bodies = max(self._checked_bodies, self.bodies.count)
             return generator
         else:
+            hint = ""
+            if isinstance(generator, (Box, Sphere)):  # the rigid shapes, pm.Box and pm.Sphere
+                hint = (f"; a {type(generator).__name__} is a rigid body's shape: "
+                        f"world.add_body(shape, position, ...) (walls that keep particles in "
+                        f"are pm.BoxContainer)")
             raise TypeError(f"world.add takes a ForceGenerator, BodyForceGenerator, Joint or "
-                            f"ContactGenerator, got "
-                            f"{type(generator).__name__}")
+                            f"ContactGenerator, got {type(generator).__name__}{hint}")
         self._checked_count = max(self._checked_count, self.particles.count)
         return generator
 
@@ -429,7 +436,9 @@ class World:
         spring to a dropped particle fails here, naming it, instead of reading a stale row."""
         count = self.particles.count
         if count < self._checked_count:
-            for generator in (*self.forces, *self.contact_generators):
+            generators: list[ForceGenerator | ContactGenerator] = [*self.forces,
+                                                                   *self.contact_generators]
+            for generator in generators:
                 try:
                     generator.validate(self.particles)
                 except (IndexError, ValueError) as error:
@@ -679,6 +688,7 @@ class World:
                 [acc, p.acceleration[packed.selected]])
             if live is None:
                 return packed, full
+            assert links is not None  # ``live`` is only set with sleeping on, as ``links``
             woken = sleeping.touched(b, self.body_contacts, packed, full, dt, links, live)
             if not woken.any():
                 sleeping.leave_sleepers_out(b, self.body_contacts, packed)

@@ -95,7 +95,7 @@ def test_bad_time_step_is_refused(dt):
 def test_restitution_outside_zero_one_is_refused(e):
     """Refuse restitution outside [0, 1] everywhere it is accepted."""
     for make in (lambda: pm.Ground(restitution=e), lambda: pm.SphereCollisions(restitution=e),
-                 lambda: pm.Box(restitution=e), lambda: pm.Cable(0, 1, 1.0, restitution=e),
+                 lambda: pm.BoxContainer(restitution=e), lambda: pm.Cable(0, 1, 1.0, restitution=e),
                  lambda: pm.Plane((0, 1, 0), restitution=e)):
         with pytest.raises(ValueError, match=r"restitution must be in \[0, 1\]"):
             make()

@@ -22,7 +22,7 @@ def _ball_pit(seed: int) -> pm.World:
     world.add(pm.Spring(pairs[:, 0], pairs[:, 1], spring_constant=50.0, rest_length=0.4,
                         damping=0.5))
     world.add(pm.Drag(0.05, 0.01))
-    world.add(pm.Box((-1.2, 0.0, -1.2), (1.2, 10.0, 1.2), restitution=0.5))
+    world.add(pm.BoxContainer((-1.2, 0.0, -1.2), (1.2, 10.0, 1.2), restitution=0.5))
     world.add(pm.SphereCollisions(restitution=0.5))
     return world
 

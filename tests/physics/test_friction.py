@@ -152,7 +152,7 @@ def _pile(mu: float) -> pm.World:
     rng = np.random.default_rng(3)
     world = pm.World(gravity=(0, -G, 0))
     world.add_particles(rng.uniform((-0.5, 0.2, -0.5), (0.5, 2.0, 0.5), (40, 3)), radii=0.15)
-    world.add(pm.Box((-0.8, 0.0, -0.8), (0.8, 5.0, 0.8), restitution=0.3, friction=mu))
+    world.add(pm.BoxContainer((-0.8, 0.0, -0.8), (0.8, 5.0, 0.8), restitution=0.3, friction=mu))
     world.add(pm.SphereCollisions(restitution=0.3, friction=mu))
     return world
 
@@ -226,7 +226,7 @@ def test_generators_carry_their_friction_into_the_contacts():
     """Give the box and the spheres different μ: each contact carries its generator's value."""
     world = pm.World(gravity=(0, -G, 0))
     world.add_particles([[0.0, R, 0.0], [0.0, 3 * R, 0.0]], radii=R)
-    box = pm.Box((-1, 0, -1), (1, 5, 1), friction=0.25)
+    box = pm.BoxContainer((-1, 0, -1), (1, 5, 1), friction=0.25)
     world.add(box)
     world.add(pm.SphereCollisions(friction=0.75))
     world.step(DT)
@@ -251,7 +251,7 @@ def test_custom_generators_adding_contacts_positionally_stay_frictionless():
 @pytest.mark.parametrize("make", [
     lambda mu: pm.Plane((0, 1, 0), 0.0, friction=mu),
     lambda mu: pm.Ground(friction=mu),
-    lambda mu: pm.Box(friction=mu),
+    lambda mu: pm.BoxContainer(friction=mu),
     lambda mu: pm.SphereCollisions(friction=mu),
 ], ids=["Plane", "Ground", "Box", "SphereCollisions"])
 def test_a_bad_friction_coefficient_is_refused_by_name(make, bad):
@@ -260,7 +260,7 @@ def test_a_bad_friction_coefficient_is_refused_by_name(make, bad):
         make(bad)
 
 
-@pytest.mark.parametrize("make", [pm.Ground, pm.Box, pm.SphereCollisions],
+@pytest.mark.parametrize("make", [pm.Ground, pm.BoxContainer, pm.SphereCollisions],
                          ids=["Ground", "Box", "SphereCollisions"])
 def test_setting_a_bad_friction_later_is_refused_by_name(make):
     """Set μ = -1 on an existing generator: a ValueError names friction, and μ is unchanged."""

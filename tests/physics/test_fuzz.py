@@ -33,7 +33,7 @@ def _world(seed: int, *, forces: bool) -> tuple[pm.World, np.ndarray, list]:
     e = float(rng.uniform(0, 1))
     world.add(pm.SphereCollisions(restitution=e))
     if forces or rng.random() < 0.5:  # without walls or forces momentum must be kept exactly
-        world.add(pm.Box((-2, -2, -2), (2, 2, 2), restitution=float(rng.uniform(0, 1))))
+        world.add(pm.BoxContainer((-2, -2, -2), (2, 2, 2), restitution=float(rng.uniform(0, 1))))
     links = []
     p = world.particles.position
     for _ in range(int(rng.integers(0, n))):
@@ -84,7 +84,7 @@ def _run(seed: int, *, forces: bool, steps: int = 200) -> None:
             assert now <= energy * (1 + 1e-9) + 1e-12, (seed, energy, now)
             energy = now
     isolated = not forces and not pinned.any() and not any(
-        isinstance(g, pm.Box) for g in world.contact_generators)
+        isinstance(g, pm.BoxContainer) for g in world.contact_generators)
     if isolated:  # nothing outside the particles pushes: momentum is kept
         assert np.allclose(parts.momentum(), momentum, rtol=0, atol=1e-9)
     for link in links:

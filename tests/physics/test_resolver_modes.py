@@ -14,7 +14,7 @@ def _small_pile(mode: str) -> pm.World:
     rng = np.random.default_rng(11)
     world = pm.World(resolver=mode)
     world.add_particles(rng.uniform((-0.5, 0.2, -0.5), (0.5, 2.0, 0.5), (30, 3)), radii=0.15)
-    world.add(pm.Box((-0.8, 0.0, -0.8), (0.8, 5.0, 0.8), restitution=0.3))
+    world.add(pm.BoxContainer((-0.8, 0.0, -0.8), (0.8, 5.0, 0.8), restitution=0.3))
     world.add(pm.SphereCollisions(restitution=0.3))
     return world
 

@@ -101,7 +101,7 @@ def _random_scene(seed: int) -> pm.World:
                               masses=masses, radii=rng.uniform(0.1, 0.5, n))
     world.particles.velocity[masses == math.inf] = 0.0
     world.add(pm.SphereCollisions(restitution=float(rng.uniform(0, 1))))
-    world.add(pm.Box((-2, -2, -2), (2, 2, 2), restitution=float(rng.uniform(0, 1))))
+    world.add(pm.BoxContainer((-2, -2, -2), (2, 2, 2), restitution=float(rng.uniform(0, 1))))
     pairs = rng.choice(n, (int(rng.integers(0, n)), 2))
     pairs = pairs[pairs[:, 0] != pairs[:, 1]]
     p = world.particles.position
@@ -165,7 +165,7 @@ def ball_pit(n: int, seed: int = 0) -> pm.World:
                            -side / 2 + 0.55 + 1.1 * grid[:, 2]])
     world = pm.World()
     world.add_particles(pos + rng.uniform(-0.05, 0.05, pos.shape), radii=0.5)
-    world.add(pm.Box((-side / 2, 0, -side / 2), (side / 2, 50, side / 2), restitution=0.5))
+    world.add(pm.BoxContainer((-side / 2, 0, -side / 2), (side / 2, 50, side / 2), restitution=0.5))
     world.add(pm.SphereCollisions(restitution=0.5))
     return world
 

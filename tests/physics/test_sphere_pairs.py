@@ -83,7 +83,7 @@ def _pour(seed: int = 0, n: int = 200):
                                 rng.uniform(-1.6, 1.6, n)])
     world = pm.World()
     world.add_particles(position, radii=rng.uniform(0.15, 0.3, n))
-    world.add(pm.Box((-side / 2, 0.0, -side / 2), (side / 2, 30.0, side / 2)))
+    world.add(pm.BoxContainer((-side / 2, 0.0, -side / 2), (side / 2, 30.0, side / 2)))
     spheres = pm.SphereCollisions()
     world.add(spheres)
     return world, spheres

@@ -160,7 +160,8 @@ def test_a_scene_without_a_camera_hint_frames_its_particles():
     pts = camera.project(world.particles.position, size)
     assert ((pts[:, 0] > 0.2 * size[0]) & (pts[:, 0] < 0.8 * size[0])).all(), pts
     assert ((pts[:, 1] > 0.2 * size[1]) & (pts[:, 1] < 0.8 * size[1])).all(), pts
-    # A hint still wins, and an empty world gets the default view.
+    # A hint still wins, and an empty world gets the default view (keeping in view what is
+    # added later, as every Scene made without a hint does).
     hinted = pm.Scene(world, camera=pm.CameraHint(distance=3.0))
     assert hinted.camera.distance == 3.0
-    assert pm.Scene(pm.World()).camera == pm.CameraHint()
+    assert pm.Scene(pm.World()).camera == pm.CameraHint(keep_in_view=True)

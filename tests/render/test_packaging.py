@@ -1,4 +1,5 @@
-"""The wheel carries the shaders, and an installed wheel finds them (not the checkout's)."""
+"""The wheel carries the shaders and the ``py.typed`` marker (PEP 561: type checkers read
+pointmass's annotations), and an installed wheel finds its shaders (not the checkout's)."""
 
 from __future__ import annotations
 
@@ -24,6 +25,7 @@ def test_wheel_contains_shaders_and_installed_copy_finds_them(tmp_path):
     names = set(zipfile.ZipFile(wheel).namelist())
     for glsl in sorted((ROOT / "shaders").glob("*.glsl")):
         assert f"pointmass/shaders/{glsl.name}" in names
+    assert "pointmass/py.typed" in names
 
     site = tmp_path / "site"
     subprocess.run([sys.executable, "-m", "pip", "install", "--no-deps", "-q", "--target",

@@ -70,6 +70,7 @@ class MouseControls:
             # Scaled so the point under the cursor at the target's depth follows the cursor.
             per_px = 2.0 * math.tan(math.radians(self.camera.fov) / 2.0) / self.size()[1]
             self.camera.pan(-dx * per_px, dy * per_px)
+            self.camera.keep_in_view = False  # the camera is yours now
         elif self.mode == "grab" and self.grab is not None:
             self.grab.move(*self.camera.ray(x, y, self.size()))
 
@@ -88,12 +89,14 @@ class MouseControls:
             hit = self.pick(x, y)
             if hit is not None:
                 self.camera.focus(self.centre(hit))
+                self.camera.keep_in_view = False
             return
         self._last_click = (now, x, y)
         self.sim.press("CLICK")
 
     def scroll(self, clicks: float) -> None:
         self.camera.zoom(0.9 ** clicks)
+        self.camera.keep_in_view = False
 
     def pick(self, x: float, y: float) -> Hit | None:
         """The nearest particle or body under the pixel (x, y), or None."""

@@ -29,6 +29,8 @@ class OrbitCamera:
         fov: Vertical field of view [deg].
         near, far: Clip distances [m].
         min_distance, max_distance: The range ``zoom`` keeps ``distance`` in [m].
+        keep_in_view: ``track`` keeps every drawn particle and body in view
+            (``CameraHint.keep_in_view``); a window turns it off when you pan, zoom or focus.
     """
 
     target: np.ndarray = field(default_factory=lambda: np.array([0.0, 1.0, 0.0]))
@@ -40,6 +42,7 @@ class OrbitCamera:
     far: float = 500.0
     min_distance: float = 0.1
     max_distance: float = 1000.0
+    keep_in_view: bool = False
 
     def __post_init__(self) -> None:
         self.target = np.asarray(self.target, dtype=np.float64).reshape(3).copy()
@@ -51,7 +54,8 @@ class OrbitCamera:
         d = float(hint.distance)
         return cls(target=np.array(hint.target, float), distance=d, yaw=float(hint.yaw),
                    pitch=float(hint.pitch), fov=float(hint.fov),
-                   near=max(0.01, d * 0.005), far=max(100.0, d * 50.0))
+                   near=max(0.01, d * 0.005), far=max(100.0, d * 50.0),
+                   keep_in_view=bool(hint.keep_in_view))
 
     # -- pose ------------------------------------------------------------------------------------
     @property
@@ -114,13 +118,33 @@ class OrbitCamera:
 
     def track(self, scene) -> None:
         """Keep the particle named by ``scene.camera.follow`` (or the rigid body named by
-        ``scene.camera.follow_body``), if any, at the target."""
+        ``scene.camera.follow_body``), if any, at the target; otherwise, with
+        ``keep_in_view``, everything drawn in view (``keep``)."""
         hint = scene.camera
         for index, positions in ((hint.follow, scene.world.particles.position),
                                  (hint.follow_body, scene.world.bodies.position)):
             if index is not None and 0 <= index < len(positions):
                 self.focus(positions[index])
                 return
+        if self.keep_in_view:
+            self.keep(scene)
+
+    def keep(self, scene) -> None:
+        """Look at the centre of the bounds of every drawn particle and body of ``scene``, from
+        at least as far as ``CameraHint.framing`` asks for them (the distance only grows, so
+        the view does not pump as things bounce; it depends on the state alone, so a window,
+        a recording and a screenshot of the same moment agree)."""
+        p, b = scene.world.particles, scene.world.bodies
+        shown = np.ones(p.count, bool) if scene.hidden is None else \
+            ~np.asarray(scene.hidden, bool)[: p.count]
+        points = np.vstack([p.position[shown], b.position])
+        if not len(points):
+            return
+        radii = np.concatenate([p.radius[shown], np.linalg.norm(b.size, axis=1)])
+        hint = CameraHint.framing(points, radii, yaw=self.yaw, pitch=self.pitch, fov=self.fov)
+        self.target = np.array(hint.target, dtype=np.float64)
+        self.distance = min(max(self.distance, hint.distance), self.max_distance)
+        self.far = max(self.far, self.distance * 50.0)
 
     # -- screen <-> world ------------------------------------------------------------------------
     def project(self, points, size: tuple[int, int]) -> np.ndarray:

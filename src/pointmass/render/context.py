@@ -20,7 +20,9 @@ def create_headless_context(*, require: int = 330) -> moderngl.Context:
             packages that provide them.
     """
     try:
-        return moderngl.create_standalone_context(backend="egl", require=require)
+        # moderngl's stub types ``backend`` as a dict; the documented value is the string
+        return moderngl.create_standalone_context(backend="egl",  # type: ignore[arg-type]
+                                                  require=require)
     except Exception as exc:  # moderngl raises plain Exception subclasses from glcontext
         raise RenderUnavailable(
             f"could not create an offscreen OpenGL {require // 100}.{require % 100 // 10} "

@@ -59,7 +59,7 @@ class Hit(NamedTuple):
     ray [m]."""
 
     kind: str
-    index: int
+    index: int  # type: ignore[assignment]  # a field named like tuple.index, as intended
     point: np.ndarray
     distance: float
 

@@ -129,7 +129,7 @@ def record(simulation, path: str | Path | VideoWriter, *, seconds: float, fps: i
     try:
         if own_ctx:
             ctx = create_headless_context()
-        if own_renderer:
+        if renderer is None:  # own_renderer
             renderer = Renderer(ctx, writer.size)
         else:
             renderer.resize(writer.size)

@@ -60,3 +60,33 @@ def render_frame(simulation, size: tuple[int, int] = (1280, 720), *, time: float
         return rgb
     finally:
         ctx.release()
+
+
+def render_png(source, path: str | Path, *, time: float = 0.0,
+               size: tuple[int, int] = (1280, 720), overrides=(),
+               overwrite: bool = True) -> Path:
+    """``pointmass.render``: write one picture of ``source`` (a Scene, a Simulation, a demo
+    name or ``.py`` path) after ``time`` more simulated seconds [s] to ``path``; returns it.
+
+    A Scene or a Simulation goes on from where it is (and is left there); a demo starts at 0.
+    An existing file is replaced (as ``savefig`` does) unless ``overwrite=False``. The format
+    follows the suffix (.png, .jpg)."""
+    from .. import _validate as check
+    from ..simulation import Simulation
+
+    time = check.scalar(time, "time", low=0.0, high=3600.0)
+    given = tuple(size)
+    if len(given) != 2 or not all(isinstance(v, int) and not isinstance(v, bool)
+                                  and 0 < v <= 8192 for v in given):
+        raise ValueError(f"size must be (width, height) in pixels, each 1 to 8192, got {size!r}")
+    size = (given[0], given[1])
+    path = Path(path)
+    if path.suffix.lower() not in (".png", ".jpg", ".jpeg", ".bmp", ".tif", ".tiff", ".webp"):
+        raise ValueError(f"path must name an image file (.png, .jpg), got {str(path)!r}")
+    if path.exists() and not overwrite:
+        raise FileExistsError(f"{path} exists (overwrite=False)")
+    path = check_writable(path)
+    sim = source if isinstance(source, Simulation) else Simulation(source,
+                                                                    overrides=list(overrides))
+    save_image(render_frame(sim, size, time=time), path)
+    return path

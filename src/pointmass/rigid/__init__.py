@@ -1,4 +1,6 @@
-"""Rigid bodies (issue 13). Not exported from pointmass yet; ``World.add_body`` is the way in.
+"""Rigid bodies (issue 13). What a script needs is exported from ``pointmass``: the shapes
+(``pm.Box``, ``pm.Sphere``, for ``World.add_body``), ``pm.Body``/``pm.Bodies``, the joints
+(``pm.BallJoint``, ``pm.HingeJoint``) and the body force generators (``pm.BodySpring``, ...).
 
 quaternion / scalar: rotations on small arrays / on scalars for hot loops; integrate: the
 torque-free rotation that keeps L and energy; shapes: sphere, box and their mass properties;

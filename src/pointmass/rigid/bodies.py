@@ -64,6 +64,28 @@ class Bodies(RowViews):
             while awake, shape (N,), int64: waking one body wakes all of it.
     """
 
+    # The storage ``_alloc`` makes (setattr by name; declared for type checkers).
+    _position: np.ndarray
+    _velocity: np.ndarray
+    _angular_velocity: np.ndarray
+    _force: np.ndarray
+    _torque: np.ndarray
+    _inv_inertia: np.ndarray
+    _size: np.ndarray
+    _inv_mass: np.ndarray
+    _linear_damping: np.ndarray
+    _angular_damping: np.ndarray
+    _friction: np.ndarray
+    _restitution: np.ndarray
+    _orientation: np.ndarray
+    _inv_inertia_world: np.ndarray
+    _shape: np.ndarray
+    _awake: np.ndarray
+    _sleep_time: np.ndarray
+    _island: np.ndarray
+    _still_position: np.ndarray
+    _still_orientation: np.ndarray
+
     def __init__(self, capacity: int = 16) -> None:
         self._count = 0
         #: How many times islands were woken (the world gives their warm start back when
@@ -74,13 +96,13 @@ class Bodies(RowViews):
     # -- storage -------------------------------------------------------------------------------
     def _alloc(self, capacity: int) -> None:
         n = self._count
-        shapes = dict.fromkeys(_FIELDS_3, (capacity, 3))
+        shapes: dict[str, tuple[int, ...]] = dict.fromkeys(_FIELDS_3, (capacity, 3))
         shapes.update(dict.fromkeys(_FIELDS_1, (capacity,)))
         shapes.update(orientation=(capacity, 4), inv_inertia_world=(capacity, 3, 3),
                       shape=(capacity,), **dict.fromkeys(_SLEEP_FIELDS[:3], (capacity,)),
                       still_position=(capacity, 3), still_orientation=(capacity, 4))
         for name, shape in shapes.items():
-            arr = np.zeros(shape, dtype=_DTYPES.get(name, np.float64))
+            arr: np.ndarray = np.zeros(shape, dtype=_DTYPES.get(name, np.float64))
             old = getattr(self, "_" + name, None)
             if old is not None:
                 arr[:n] = old[:n]

@@ -7,7 +7,9 @@ row, which the solver lets close only by its gap: no tunnelling at moderate spee
 contact that appears only once it is deep. Planes are the particles' ``Plane``/``Ground``
 (n·x = offset, the solid on the −n side); bodies meet every plane of the world.
 
-Materials: μ = √(μa·μb), e = max(ea, eb) (a plane counts as a surface with its own μ and e).
+Materials: μ = √(μa·μb), e = max(ea, eb) (a plane counts as a surface with its own μ and e);
+a plane whose μ or e was never set (``Plane.body_friction``/``body_restitution`` None, passed
+here as −1) leaves the body's own.
 """
 
 from __future__ import annotations
@@ -137,8 +139,8 @@ def plane_contacts(pos, quat, shape, size, inv_mass, friction, restitution, reac
                 continue
             if got == 0:
                 continue
-            mu = math.sqrt(friction[i] * plane_mu[s])
-            e = max(restitution[i], plane_e[s])
+            mu = friction[i] if plane_mu[s] < 0.0 else math.sqrt(friction[i] * plane_mu[s])
+            e = restitution[i] if plane_e[s] < 0.0 else max(restitution[i], plane_e[s])
             count = _emit(count, i, -1, pos[i], pos[i], normal, points, depth, ids, got, mu, e,
                           plane_serial[s], out_a, out_b, out_n, out_ra, out_rb, out_d, out_mu,
                           out_e, out_key)
@@ -176,8 +178,11 @@ def generate(bodies, planes, dt: float, contacts: BodyContacts,
     if n_planes:
         plane_n = np.array([p.normal for p in planes], dtype=np.float64).reshape(n_planes, 3)
         plane_d = np.array([p.offset for p in planes], dtype=np.float64)
-        plane_mu = np.array([p.friction for p in planes], dtype=np.float64)
-        plane_e = np.array([p.restitution for p in planes], dtype=np.float64)
+        # −1: a material the plane leaves to the body (not set; see pointmass.collide)
+        plane_mu = np.array([-1.0 if p.body_friction is None else p.body_friction
+                             for p in planes], dtype=np.float64)
+        plane_e = np.array([-1.0 if p.body_restitution is None else p.body_restitution
+                            for p in planes], dtype=np.float64)
         serial = np.array([p.serial for p in planes], dtype=np.int64)
         count = plane_contacts(b.position, b.orientation, b.shape, b.size, on_planes,
                                b.friction, b.restitution, reach, margin, plane_n, plane_d,

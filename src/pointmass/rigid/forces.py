@@ -127,12 +127,32 @@ class BodySpring(BodyForceGenerator):
         self.rest = rest
         self.damping = damping
 
-    k = property(lambda self: self._k, lambda self, v: setattr(
-        self, "_k", check.scalar(v, "k", low=0.0)), doc="Stiffness [N/m], ≥ 0.")
-    rest = property(lambda self: self._rest, lambda self, v: setattr(
-        self, "_rest", check.scalar(v, "rest", low=0.0)), doc="Rest length [m], ≥ 0.")
-    damping = property(lambda self: self._c, lambda self, v: setattr(
-        self, "_c", check.scalar(v, "damping", low=0.0)), doc="Damping [N·s/m], ≥ 0.")
+    @property
+    def k(self) -> float:
+        """Stiffness [N/m], ≥ 0."""
+        return self._k
+
+    @k.setter
+    def k(self, value: float) -> None:
+        self._k = check.scalar(value, "k", low=0.0)
+
+    @property
+    def rest(self) -> float:
+        """Rest length [m], ≥ 0."""
+        return self._rest
+
+    @rest.setter
+    def rest(self, value: float) -> None:
+        self._rest = check.scalar(value, "rest", low=0.0)
+
+    @property
+    def damping(self) -> float:
+        """Damping [N·s/m], ≥ 0."""
+        return self._c
+
+    @damping.setter
+    def damping(self, value: float) -> None:
+        self._c = check.scalar(value, "damping", low=0.0)
 
     def validate(self, bodies: Bodies) -> None:
         bodies.check_index(self.a, "body_a")
@@ -177,8 +197,14 @@ class AnchoredBodySpring(BodySpring):
         self.rest = rest
         self.damping = damping
 
-    anchor = property(lambda self: self._anchor, lambda self, v: setattr(
-        self, "_anchor", check.vec3(v, "anchor")), doc="The fixed end [m].")
+    @property
+    def anchor(self) -> np.ndarray:
+        """The fixed end [m]."""
+        return self._anchor
+
+    @anchor.setter
+    def anchor(self, value) -> None:
+        self._anchor = check.vec3(value, "anchor")
 
     def validate(self, bodies: Bodies) -> None:
         bodies.check_index(self.a, "body")
@@ -265,8 +291,14 @@ class Aero(BodyForceGenerator):
     def tensor(self, value) -> None:
         self._tensor = aero_tensor(value, "tensor")
 
-    wind = property(lambda self: self._wind, lambda self, v: setattr(
-        self, "_wind", check.vec3(v, "wind")), doc="The air's velocity [m/s].")
+    @property
+    def wind(self) -> np.ndarray:
+        """The air's velocity [m/s]."""
+        return self._wind
+
+    @wind.setter
+    def wind(self, value) -> None:
+        self._wind = check.vec3(value, "wind")
 
     def validate(self, bodies: Bodies) -> None:
         bodies.check_index(self.index, "body")
@@ -368,11 +400,23 @@ class BodyBuoyancy(BodyForceGenerator):
         self.liquid_density = liquid_density
         self.gravity = check.scalar(gravity, "gravity", low=0.0)
 
-    water_height = property(lambda self: self._water, lambda self, v: setattr(
-        self, "_water", check.scalar(v, "water_height")), doc="Water surface height [m].")
-    liquid_density = property(lambda self: self._rho, lambda self, v: setattr(
-        self, "_rho", check.scalar(v, "liquid_density", low=0.0)),
-        doc="Liquid density [kg/m³], ≥ 0.")
+    @property
+    def water_height(self) -> float:
+        """Water surface height [m]."""
+        return self._water
+
+    @water_height.setter
+    def water_height(self, value: float) -> None:
+        self._water = check.scalar(value, "water_height")
+
+    @property
+    def liquid_density(self) -> float:
+        """Liquid density [kg/m³], ≥ 0."""
+        return self._rho
+
+    @liquid_density.setter
+    def liquid_density(self, value: float) -> None:
+        self._rho = check.scalar(value, "liquid_density", low=0.0)
 
     def validate(self, bodies: Bodies) -> None:
         bodies.check_index(self.index, "body")
@@ -455,8 +499,14 @@ class Explosion(BodyForceGenerator):
         #: Seconds since it went off.
         self.age = 0.0
 
-    centre = property(lambda self: self._centre, lambda self, v: setattr(
-        self, "_centre", check.vec3(v, "centre")), doc="Where it goes off [m].")
+    @property
+    def centre(self) -> np.ndarray:
+        """Where it goes off [m]."""
+        return self._centre
+
+    @centre.setter
+    def centre(self, value) -> None:
+        self._centre = check.vec3(value, "centre")
 
     @property
     def done(self) -> bool:

@@ -202,7 +202,7 @@ class Solver:
         """The body stage's position half: projection, world inertia, impulses kept."""
         body_solver.project_positions(bodies, rows, history, joints)
 
-    def _sequential(self, p, bod, con, contacts, history, dt) -> SolveStats:
+    def _sequential(self, p, bod, con, contacts, history, dt) -> tuple[SolveStats, ContactSet]:
         threshold = float(self.restitution_threshold)
         history.recall(contacts.key, con.impulse, con.tangent)
         blocks = block_rows(con.a, con.b, p.position) \

@@ -15,7 +15,7 @@ HALF = 0.5
 
 def _world(**kwargs):
     world = pm.World(**kwargs)
-    world.add(pm.Ground(friction=0.5))
+    world.add(pm.Ground(friction=0.5, restitution=0.5))  # e = 0.5: the figures were measured so
     return world
 
 
