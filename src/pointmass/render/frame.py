@@ -18,6 +18,7 @@ import numpy as np
 from ..scene import BoxVisual, PlaneVisual, Scene
 from . import bodies as body_visuals
 from . import gather, geometry, manifolds
+from .look import LookTracker, ParticleLook
 from .picking import drawn_radii
 
 _NO_LINES = np.zeros((0, gather.LINE_FLOATS), np.float32)
@@ -39,6 +40,12 @@ class FrameState:
             manifolds' points, normals and outlines), caller lines.
         boxes, planes: Copies of the scene's boxes and planes.
         show_ground, ground_height, sky: The scene's backdrop.
+        positions: The hardware path's particle positions ((N, 3) float32, the one copy of
+            the particles it makes per frame), or None (the software path: the particles
+            are the first sphere rows). With them ``spheres`` holds only the rest (sphere
+            bodies, their markers, anchors) and ``particles`` counts the casters among those.
+        look: The hardware path's particle look when it changed since the last frame drawn
+            (``look.ParticleLook``), else None.
     """
 
     time: float
@@ -52,10 +59,13 @@ class FrameState:
     show_ground: bool
     ground_height: float
     sky: object
+    positions: np.ndarray | None = None
+    look: ParticleLook | None = None
 
     @classmethod
     def capture(cls, scene: Scene, *, trails=None, show_contacts: bool = False,
-                extra_lines=None, width_scale: float = 1.0) -> FrameState:
+                extra_lines=None, width_scale: float = 1.0,
+                looks: LookTracker | None = None) -> FrameState:
         """Copy what the renderer needs out of ``scene`` now.
 
         Args:
@@ -64,19 +74,29 @@ class FrameState:
                 normals) and rigid bodies' manifolds (``manifolds.py``).
             extra_lines: (start, end, rgb) triples drawn on top (the viewer's drag spring).
             width_scale: Line widths' scale (the renderer's: its height / 720, at least 1).
+            looks: The hardware path's look tracker: the particles are taken as positions
+                and, when it changed, their look; None: as sphere rows (the software path).
         """
         n = scene.world.particles.count
         anchors = gather.anchor_points(scene) if scene.show_links else np.zeros((0, 3))
-        spheres = np.empty((n + len(anchors), gather.SPHERE_FLOATS), np.float32)
-        gather.fill_spheres(scene, spheres, anchors)
+        positions = look = None
+        if looks is None:
+            spheres = np.empty((n + len(anchors), gather.SPHERE_FLOATS), np.float32)
+            gather.fill_spheres(scene, spheres, anchors)
+            first = n
+        else:
+            positions = scene.world.particles.position.astype(np.float32)
+            look = looks.capture(scene)
+            spheres = gather.anchor_rows(scene, anchors)
+            first = 0
         # Rigid bodies: sphere bodies after the particles (they cast shadows too), their spin
         # markers with the anchors (they do not); box bodies join the scene's boxes.
         bodies = scene.world.bodies
         balls, markers = body_visuals.sphere_rows(bodies, gather.SPHERE_FLOATS)
         if len(balls) or len(markers):
-            spheres = np.concatenate([spheres[:n], balls, markers, spheres[n:]])
+            spheres = np.concatenate([spheres[:first], balls, markers, spheres[first:]])
         boxes = [*scene.boxes, *body_visuals.box_visuals(bodies)]
-        casters = n + len(balls)
+        casters = first + len(balls)
 
         have_trails = trails is not None and len(trails)
         parts: list[np.ndarray] = []
@@ -103,7 +123,8 @@ class FrameState:
                    boxes=tuple(_copy_box(b) for b in boxes),
                    planes=tuple(_copy_plane(p) for p in scene.planes),
                    show_ground=bool(scene.show_ground),
-                   ground_height=float(scene.ground_height), sky=scene.sky)
+                   ground_height=float(scene.ground_height), sky=scene.sky,
+                   positions=positions, look=look)
 
 
 def _joined(parts: list[np.ndarray]) -> np.ndarray:

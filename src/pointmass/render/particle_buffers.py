@@ -1,0 +1,106 @@
+"""The particles on the GPU (the hardware path): a position buffer refilled every frame and a
+look buffer (radius, color) refilled only when the look changes, read by the sphere, glow and
+shadow programs' SPLIT variants, one instanced draw each.
+
+The position buffer is orphaned before each write: the driver hands over fresh storage while
+the GPU may still read last frame's, so the upload never waits for the GPU.
+"""
+
+from __future__ import annotations
+
+import moderngl
+import numpy as np
+
+from ..scene import default_colors
+from .look import LOOK_DTYPE, ParticleLook
+from .shadow_splat import FADE_REACH, SPREAD_FAR, SPREAD_NEAR
+
+_PALETTE = default_colors(8).astype(np.float32)
+
+
+class ParticleBuffers:
+    """Position and look buffers for ``count`` particles, and the vertex arrays reading them.
+
+    Args:
+        programs: The renderer's programs; uses "spheres_split", "glow_split" and
+            "shadow_blobs_split".
+        quad: The unit quad's corner buffer (triangle strip).
+    """
+
+    def __init__(self, ctx: moderngl.Context, programs: dict, quad: moderngl.Buffer,
+                 capacity: int = 1024) -> None:
+        self.ctx, self.programs, self.quad = ctx, programs, quad
+        self.capacity = 0
+        self.count = 0
+        self.palette = True
+        self.glowing = False
+        self.positions: moderngl.Buffer | None = None
+        self.look: moderngl.Buffer | None = None
+        self.vaos: dict[str, moderngl.VertexArray] = {}
+        self._reserve(capacity)
+        for name in ("spheres_split", "glow_split"):
+            programs[name]["u_palette_rgb"].write(_PALETTE.tobytes())
+        blobs = programs["shadow_blobs_split"]
+        for prog in (blobs, programs["shadow_blobs"]):
+            prog["u_fade_reach"].value = FADE_REACH
+            prog["u_spread"].value = (SPREAD_NEAR, SPREAD_FAR)
+
+    def _reserve(self, rows: int) -> bool:
+        """Room for ``rows`` particles; True when the buffers were remade (their look lost)."""
+        if rows <= self.capacity:
+            return False
+        self.capacity = max(rows, 2 * self.capacity)
+        self._release_gl()
+        ctx, prog = self.ctx, self.programs
+        self.positions = ctx.buffer(reserve=12 * self.capacity, dynamic=True)
+        self.look = ctx.buffer(reserve=LOOK_DTYPE.itemsize * self.capacity, dynamic=True)
+        split = [(self.positions, "3f/i", "in_center"),
+                 (self.look, "1f 4f1/i", "in_radius", "in_rgba")]
+        self.vaos = {name: ctx.vertex_array(prog[f"{name}_split"],
+                                            [(self.quad, "2f", "in_corner"), *split])
+                     for name in ("spheres", "glow", "shadow_blobs")}
+        return True
+
+    def upload(self, positions: np.ndarray, look: ParticleLook | None) -> None:
+        """Send this frame's positions ((N, 3) float32) and, if it changed, the look.
+
+        Raises:
+            ValueError: when the particle count changed but no new look came with it.
+        """
+        n = len(positions)
+        remade = self._reserve(n)
+        if look is None and (remade or n != self.count):
+            raise ValueError(f"{n} particles but a look for {self.count}: a new look must come "
+                             "with a new count (LookTracker.reset after the buffers change)")
+        self.count = n
+        if n:
+            self.positions.orphan(12 * self.capacity)
+            self.positions.write(positions)
+        if look is not None:
+            if len(look.rows) != n:
+                raise ValueError(f"look for {len(look.rows)} particles, positions for {n}")
+            if n:
+                self.look.write(look.rows)
+            self.palette = look.palette
+            self.glowing = look.glowing
+
+    def draw(self, name: str) -> None:
+        """One instanced draw of every particle with the "spheres", "glow" or "shadow_blobs"
+        program (its uniforms set by the caller)."""
+        if self.count:
+            prog = self.programs[f"{name}_split"]
+            if name != "shadow_blobs":
+                prog["u_palette"].value = self.palette
+            self.vaos[name].render(moderngl.TRIANGLE_STRIP, vertices=4, instances=self.count)
+
+    def _release_gl(self) -> None:
+        for vao in self.vaos.values():
+            vao.release()
+        self.vaos = {}
+        for buf in (self.positions, self.look):
+            if buf is not None:
+                buf.release()
+        self.positions = self.look = None
+
+    def release(self) -> None:
+        self._release_gl()
