@@ -1,9 +1,11 @@
-"""The particles on the GPU (the hardware path): a position buffer refilled every frame and a
+"""The particles on the GPU (the hardware path): position buffers refilled every frame and a
 look buffer (radius, color) refilled only when the look changes, read by the sphere, glow and
 shadow programs' SPLIT variants, one instanced draw each.
 
-The position buffer is orphaned before each write: the driver hands over fresh storage while
-the GPU may still read last frame's, so the upload never waits for the GPU.
+Positions go round a ring of ``RING`` buffers, one per frame: a frame writes the buffer the
+GPU last read ``RING`` frames ago, long done, so the upload never waits for the GPU, and no
+storage is reallocated (orphaning reallocates each frame: on llvmpipe that doubled the upload,
+14 against 6.6 ms for 1 M positions).
 """
 
 from __future__ import annotations
@@ -16,6 +18,8 @@ from .look import LOOK_DTYPE, ParticleLook
 from .shadow_splat import FADE_REACH, SPREAD_FAR, SPREAD_NEAR
 
 _PALETTE = default_colors(8).astype(np.float32)
+#: Position buffers in the ring.
+RING = 3
 
 
 class ParticleBuffers:
@@ -34,9 +38,11 @@ class ParticleBuffers:
         self.count = 0
         self.palette = True
         self.glowing = False
-        self.positions: moderngl.Buffer | None = None
+        self.ring: list[moderngl.Buffer] = []
         self.look: moderngl.Buffer | None = None
-        self.vaos: dict[str, moderngl.VertexArray] = {}
+        self.slot = 0
+        """The ring's buffer holding this frame's positions."""
+        self.vaos: list[dict[str, moderngl.VertexArray]] = []
         self._reserve(capacity)
         for name in ("spheres_split", "glow_split"):
             programs[name]["u_palette_rgb"].write(_PALETTE.tobytes())
@@ -52,13 +58,15 @@ class ParticleBuffers:
         self.capacity = max(rows, 2 * self.capacity)
         self._release_gl()
         ctx, prog = self.ctx, self.programs
-        self.positions = ctx.buffer(reserve=12 * self.capacity, dynamic=True)
+        self.ring = [ctx.buffer(reserve=12 * self.capacity, dynamic=True) for _ in range(RING)]
         self.look = ctx.buffer(reserve=LOOK_DTYPE.itemsize * self.capacity, dynamic=True)
-        split = [(self.positions, "3f/i", "in_center"),
-                 (self.look, "1f 4f1/i", "in_radius", "in_rgba")]
-        self.vaos = {name: ctx.vertex_array(prog[f"{name}_split"],
-                                            [(self.quad, "2f", "in_corner"), *split])
-                     for name in ("spheres", "glow", "shadow_blobs")}
+        self.vaos = []
+        for positions in self.ring:
+            split = [(positions, "3f/i", "in_center"),
+                     (self.look, "1f 4f1/i", "in_radius", "in_rgba")]
+            self.vaos.append({name: ctx.vertex_array(prog[f"{name}_split"],
+                                                     [(self.quad, "2f", "in_corner"), *split])
+                              for name in ("spheres", "glow", "shadow_blobs")})
         return True
 
     def upload(self, positions: np.ndarray, look: ParticleLook | None) -> None:
@@ -74,8 +82,8 @@ class ParticleBuffers:
                              "with a new count (LookTracker.reset after the buffers change)")
         self.count = n
         if n:
-            self.positions.orphan(12 * self.capacity)
-            self.positions.write(positions)
+            self.slot = (self.slot + 1) % RING
+            self.ring[self.slot].write(positions)
         if look is not None:
             if len(look.rows) != n:
                 raise ValueError(f"look for {len(look.rows)} particles, positions for {n}")
@@ -91,16 +99,18 @@ class ParticleBuffers:
             prog = self.programs[f"{name}_split"]
             if name != "shadow_blobs":
                 prog["u_palette"].value = self.palette
-            self.vaos[name].render(moderngl.TRIANGLE_STRIP, vertices=4, instances=self.count)
+            self.vaos[self.slot][name].render(moderngl.TRIANGLE_STRIP, vertices=4,
+                                              instances=self.count)
 
     def _release_gl(self) -> None:
-        for vao in self.vaos.values():
-            vao.release()
-        self.vaos = {}
-        for buf in (self.positions, self.look):
+        for vaos in self.vaos:
+            for vao in vaos.values():
+                vao.release()
+        self.vaos = []
+        for buf in (*self.ring, self.look):
             if buf is not None:
                 buf.release()
-        self.positions = self.look = None
+        self.ring, self.look = [], None
 
     def release(self) -> None:
         self._release_gl()
