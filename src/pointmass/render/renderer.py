@@ -132,8 +132,12 @@ class Renderer:
         self._read = None
         self._backdrop = None
         self._backdrop_key = None
-        self.cache_backdrop = True
-        """Keep the sky and ground between frames while the camera stays put (no MSAA)."""
+        self.cache_backdrop = self.path == "software"
+        """Keep the sky and ground between frames while the camera stays put (no MSAA): the
+        software path's saving. Not on the hardware path: there redrawing them costs well under
+        a millisecond, while a depth buffer copied in (a blit) loses the GPU's hierarchical
+        depth, so no hidden fragment is rejected early (a million spheres at 1080p on an H100:
+        47 ms a frame with the copy, 13 without)."""
         self.size = (0, 0)
         self.resize(size)
 
