@@ -65,7 +65,7 @@ void main() {
 
 #elif defined FRAGMENT_SHADER
 
-#if defined SPLIT
+#if defined SPLIT && defined GL_ARB_conservative_depth   // (a driver without it: no promise)
 #extension GL_ARB_conservative_depth : enable
 layout(depth_greater) out float gl_FragDepth;
 #endif

@@ -83,12 +83,14 @@ def test_hardware_shadows_darken_the_ground_as_the_splatted_ones(ctx):
     assert dark_hard == pytest.approx(dark_soft, rel=0.15)
 
 
-def test_glowing_fireworks_and_rigid_bodies_match(ctx):
-    """Glowing particles (their own program) and rigid bodies (spheres with spin markers,
-    boxes, their blob shadows) on the hardware path."""
+def test_glow_rigid_bodies_and_links_match(ctx):
+    """Glowing particles (their own program), rigid bodies (spheres with spin markers, boxes,
+    their blob shadows) and links drawn from the GPU's positions (the cloth's springs colored
+    by strain; the bridge's rods, and cables dashed when slack) on the hardware path."""
     from pointmass.demo import Simulation, load_demo
 
-    for name, seconds in (("fireworks", 3.0), ("big_ballistic", 2.0)):
+    for name, seconds in (("fireworks", 3.0), ("big_ballistic", 2.0), ("cloth", 2.0),
+                          ("bridge", 2.0)):
         sim = Simulation(load_demo(name))
         for _ in range(round(seconds * 30)):
             sim.advance(1 / 30)
@@ -197,3 +199,31 @@ def test_pixel_buffer_reads_come_back_in_order(ctx):
         assert not np.array_equal(direct[0], direct[1])
     finally:
         r.release()
+
+
+def test_pair_links_are_drawn_from_the_gpu_and_anchored_ones_stay_rows(ctx):
+    """Springs and rods between particles go to the links buffer (re-sent when a link is
+    added), an anchored spring stays a CPU line row; the software path keeps all as rows."""
+    from pointmass.render import OrbitCamera, Renderer
+
+    world = pm.World()
+    world.add_particles([(0.0, 1.0, 0.0), (1.0, 1.0, 0.0), (0.0, 1.0, 1.0)], radii=0.1)
+    world.add(pm.Spring(0, 1, 10.0, 0.8))
+    world.add(pm.Rod(0, 2, 1.0))
+    world.add(pm.AnchoredSpring(1, (1.0, 2.0, 0.0), 10.0, 1.0))
+    scene = pm.Scene(world)
+    cam = OrbitCamera.from_hint(scene.camera)
+    r = Renderer(ctx, (64, 48), path="hardware")
+    soft = Renderer(ctx, (64, 48), path="software")
+    try:
+        frame = r.capture(scene)
+        assert len(frame.gpu_links) == 2 and len(frame.lines) == 1
+        r.draw(frame, cam)
+        assert r._links.count == 2
+        world.add(pm.Spring(1, 2, 10.0, 1.0))
+        r.draw(r.capture(scene), cam)
+        assert r._links.count == 3
+        assert len(soft.capture(scene).lines) == 4 and soft.capture(scene).gpu_links == ()
+    finally:
+        r.release()
+        soft.release()

@@ -19,6 +19,7 @@ from numba import njit, prange
 from ..scene import BoxVisual, PlaneVisual, Scene
 from . import bodies as body_visuals
 from . import gather, geometry, manifolds
+from .gpu_links import pair_links
 from .look import LookTracker, ParticleLook
 from .picking import drawn_radii
 
@@ -67,6 +68,8 @@ class FrameState:
             bodies, their markers, anchors) and ``particles`` counts the casters among those.
         look: The hardware path's particle look when it changed since the last frame drawn
             (``look.ParticleLook``), else None.
+        gpu_links: The hardware path's links between particle pairs (``gpu_links``), drawn
+            from the GPU's positions; ``lines`` then holds only the others.
     """
 
     time: float
@@ -82,6 +85,7 @@ class FrameState:
     sky: object
     positions: np.ndarray | None = None
     look: ParticleLook | None = None
+    gpu_links: tuple = ()
 
     @classmethod
     def capture(cls, scene: Scene, *, trails=None, show_contacts: bool = False,
@@ -101,6 +105,7 @@ class FrameState:
         n = scene.world.particles.count
         anchors = gather.anchor_points(scene) if scene.show_links else np.zeros((0, 3))
         positions = look = None
+        gpu_links: tuple = ()
         if looks is None:
             spheres = np.empty((n + len(anchors), gather.SPHERE_FLOATS), np.float32)
             gather.fill_spheres(scene, spheres, anchors)
@@ -108,6 +113,8 @@ class FrameState:
         else:
             positions = positions_float32(scene.world.particles.position)
             look = looks.capture(scene)
+            if scene.show_links:
+                gpu_links = tuple(pair_links(gather.generators(scene)))
             spheres = gather.anchor_rows(scene, anchors)
             first = 0
         # Rigid bodies: sphere bodies after the particles (they cast shadows too), their spin
@@ -122,7 +129,7 @@ class FrameState:
         have_trails = trails is not None and len(trails)
         parts: list[np.ndarray] = []
         if scene.show_links:
-            parts += gather.link_lines(scene, width_scale)
+            parts += gather.link_lines(scene, width_scale, skip=gpu_links)
         if have_trails:
             parts += gather.trail_lines(scene, trails, scene.particle_colors(), width_scale)
         if boxes:
@@ -145,7 +152,7 @@ class FrameState:
                    planes=tuple(_copy_plane(p) for p in scene.planes),
                    show_ground=bool(scene.show_ground),
                    ground_height=float(scene.ground_height), sky=scene.sky,
-                   positions=positions, look=look)
+                   positions=positions, look=look, gpu_links=gpu_links)
 
 
 def _joined(parts: list[np.ndarray]) -> np.ndarray:

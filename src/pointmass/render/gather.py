@@ -86,11 +86,14 @@ def _rows(start, end, rgb, alpha, width, dash) -> np.ndarray:
     return rows
 
 
-def link_lines(scene: Scene, width_scale: float) -> list[np.ndarray]:
-    """Line rows for every spring, bungee, cable and rod, each kind with its own look."""
+def link_lines(scene: Scene, width_scale: float, skip=()) -> list[np.ndarray]:
+    """Line rows for every spring, bungee, cable and rod, each kind with its own look (but the
+    generators in ``skip``: the hardware path draws those from the GPU)."""
     out = []
     particles = scene.world.particles
     for gen in generators(scene):
+        if any(gen is g for g in skip):
+            continue
         kind = getattr(gen, "kind", None)
         seg = getattr(gen, "segments", None)
         if kind not in LINK_KINDS or seg is None:

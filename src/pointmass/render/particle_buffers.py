@@ -20,6 +20,9 @@ from .shadow_splat import FADE_REACH, SPREAD_FAR, SPREAD_NEAR
 _PALETTE = default_colors(8).astype(np.float32)
 #: Position buffers in the ring.
 RING = 3
+#: Width of the positions texture (links.glsl reads particle i at (i % width, i / width)); the
+#: capacity is a multiple of it, so the texture is filled from a position buffer in one copy.
+TEXTURE_WIDTH = 2048
 
 
 class ParticleBuffers:
@@ -43,6 +46,8 @@ class ParticleBuffers:
         self.slot = 0
         """The ring's buffer holding this frame's positions."""
         self.vaos: list[dict[str, moderngl.VertexArray]] = []
+        self.texture: moderngl.Texture | None = None
+        self._texture_slot = -1
         self._reserve(capacity)
         for name in ("spheres_split", "glow_split"):
             programs[name]["u_palette_rgb"].write(_PALETTE.tobytes())
@@ -55,11 +60,15 @@ class ParticleBuffers:
         """Room for ``rows`` particles; True when the buffers were remade (their look lost)."""
         if rows <= self.capacity:
             return False
-        self.capacity = max(rows, 2 * self.capacity)
+        self.capacity = -(-max(rows, 2 * self.capacity) // TEXTURE_WIDTH) * TEXTURE_WIDTH
         self._release_gl()
         ctx, prog = self.ctx, self.programs
         self.ring = [ctx.buffer(reserve=12 * self.capacity, dynamic=True) for _ in range(RING)]
         self.look = ctx.buffer(reserve=LOOK_DTYPE.itemsize * self.capacity, dynamic=True)
+        self.texture = ctx.texture((TEXTURE_WIDTH, self.capacity // TEXTURE_WIDTH), 3,
+                                   dtype="f4")
+        self.texture.filter = (moderngl.NEAREST, moderngl.NEAREST)
+        self._texture_slot = -1
         self.vaos = []
         for positions in self.ring:
             split = [(positions, "3f/i", "in_center"),
@@ -84,6 +93,7 @@ class ParticleBuffers:
         if n:
             self.slot = (self.slot + 1) % RING
             self.ring[self.slot].write(positions)
+            self._texture_slot = -1
         if look is not None:
             if len(look.rows) != n:
                 raise ValueError(f"look for {len(look.rows)} particles, positions for {n}")
@@ -91,6 +101,15 @@ class ParticleBuffers:
                 self.look.write(look.rows)
             self.palette = look.palette
             self.glowing = look.glowing
+
+    def positions_texture(self) -> moderngl.Texture:
+        """The positions as a float texture (for links.glsl), copied on the GPU from this
+        frame's position buffer the first time a frame asks."""
+        if self._texture_slot != self.slot:
+            rows = -(-max(self.count, 1) // TEXTURE_WIDTH)
+            self.texture.write(self.ring[self.slot], viewport=(0, 0, TEXTURE_WIDTH, rows))
+            self._texture_slot = self.slot
+        return self.texture
 
     def draw(self, name: str) -> None:
         """One instanced draw of every particle with the "spheres", "glow" or "shadow_blobs"
@@ -107,10 +126,10 @@ class ParticleBuffers:
             for vao in vaos.values():
                 vao.release()
         self.vaos = []
-        for buf in (*self.ring, self.look):
+        for buf in (*self.ring, self.look, self.texture):
             if buf is not None:
                 buf.release()
-        self.ring, self.look = [], None
+        self.ring, self.look, self.texture = [], None, None
 
     def release(self) -> None:
         self._release_gl()

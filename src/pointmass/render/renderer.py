@@ -24,6 +24,7 @@ from ..scene import Scene
 from . import gather, geometry, style
 from .camera import OrbitCamera
 from .frame import FrameState
+from .gpu_links import LinkBuffers
 from .instances import Instances
 from .look import LookTracker
 from .particle_buffers import ParticleBuffers
@@ -72,6 +73,7 @@ class Renderer:
             prog["shadow_blobs"] = load_program(ctx, "shadow_blobs", shader_dir)
             for name in ("spheres", "glow", "shadow_blobs"):
                 prog[f"{name}_split"] = load_program(ctx, name, shader_dir, defines=("SPLIT",))
+            prog["links"] = load_program(ctx, "links", shader_dir)
         self.programs = prog
         self._quad = ctx.buffer(_QUAD.tobytes())
         self._line_quad = ctx.buffer(_LINE_QUAD.tobytes())
@@ -101,9 +103,10 @@ class Renderer:
                 (buf, "4f 4f 4f 4f/i", "in_model_x", "in_model_y", "in_model_z", "in_color")])},
             capacity=64)
         self._shadows = ShadowMap(ctx)
-        self._particles = self._looks = self._casters = None
+        self._particles = self._looks = self._casters = self._links = None
         if self.path == "hardware":
             self._particles = ParticleBuffers(ctx, prog, self._quad)
+            self._links = LinkBuffers(ctx, prog["links"], self._line_quad)
             self._looks = LookTracker()
             # Shadow casters that are not particles (sphere bodies, boxes as balls).
             self._casters = Instances(ctx, gather.SPHERE_FLOATS, lambda buf: {
@@ -232,6 +235,7 @@ class Renderer:
             if frame.look is not None:
                 self._looks.drawn(frame.look)
         n_spheres = self._spheres.put(frame.spheres) if len(frame.spheres) else 0
+        n_links = self._links.sync(frame.gpu_links) if hardware else 0
         dashed = frame.lines[:, 11] > 0.0
         n_dashed = self._dashed.put(frame.lines[dashed]) if dashed.any() else 0
         n_lines = self._lines.put(frame.lines[~dashed] if n_dashed else frame.lines) \
@@ -314,6 +318,14 @@ class Renderer:
         for lines, n in ((self._lines, n_lines), (self._dashed, n_dashed)):
             if n:
                 lines.vaos["lines"].render(moderngl.TRIANGLE_STRIP, vertices=4, instances=n)
+        if n_links:
+            lk = self.programs["links"]
+            lk["u_view_proj"].write(vp.tobytes())
+            lk["u_viewport"].value = (float(w), float(h))
+            lk["u_width_scale"].value = max(1.0, h / 720.0)
+            lk["u_positions"].value = 0
+            self._particles.positions_texture().use(0)
+            self._links.draw()
         target.depth_mask = False
         self._draw_meshes(scene, vp, light_world, translucent=True)
         if n_glow or n_glow_trails or glow_particles:
@@ -480,7 +492,7 @@ class Renderer:
         self._release_targets()
         self._spheres.release()
         self._shadows.release()
-        for part in (self._particles, self._casters, self._reader):
+        for part in (self._particles, self._casters, self._reader, self._links):
             if part is not None:
                 part.release()
         self._lines.release()
