@@ -70,6 +70,9 @@ class FrameState:
             (``look.ParticleLook``), else None.
         gpu_links: The hardware path's links between particle pairs (``gpu_links``), drawn
             from the GPU's positions; ``lines`` then holds only the others.
+        body_boxes, body_casters: The hardware path's box bodies as box instance rows and as
+            shadow casters, made from the bodies' arrays (``bodies.body_arrays``); ``boxes``
+            then holds only the scene's own boxes. None on the software path.
     """
 
     time: float
@@ -86,6 +89,8 @@ class FrameState:
     positions: np.ndarray | None = None
     look: ParticleLook | None = None
     gpu_links: tuple = ()
+    body_boxes: np.ndarray | None = None
+    body_casters: np.ndarray | None = None
 
     @classmethod
     def capture(cls, scene: Scene, *, trails=None, show_contacts: bool = False,
@@ -120,10 +125,21 @@ class FrameState:
         # Rigid bodies: sphere bodies after the particles (they cast shadows too), their spin
         # markers with the anchors (they do not); box bodies join the scene's boxes.
         bodies = scene.world.bodies
-        balls, markers = body_visuals.sphere_rows(bodies, gather.SPHERE_FLOATS)
+        body_boxes = body_casters = body_edges = None
+        if looks is None:
+            balls, markers = body_visuals.sphere_rows(bodies, gather.SPHERE_FLOATS)
+            boxes = [*scene.boxes, *body_visuals.box_visuals(bodies)]
+        else:
+            # No BoxVisual per body: instance rows straight from the bodies' arrays.
+            arrays = body_visuals.body_arrays(bodies, gather.SPHERE_FLOATS)
+            balls, markers = arrays["balls"], arrays["markers"]
+            boxes = list(scene.boxes)
+            body_boxes, body_casters = arrays["boxes"], arrays["casters"]
+            if len(body_boxes):
+                body_edges = gather.line_rows(arrays["edge_start"], arrays["edge_end"],
+                                              arrays["edge_rgb"] * 0.45, 1.0, 1.5 * width_scale)
         if len(balls) or len(markers):
             spheres = np.concatenate([spheres[:first], balls, markers, spheres[first:]])
-        boxes = [*scene.boxes, *body_visuals.box_visuals(bodies)]
         casters = first + len(balls)
 
         have_trails = trails is not None and len(trails)
@@ -139,6 +155,8 @@ class FrameState:
                 * np.where(wire, 1.0, 0.45)[:, None]
             width = np.where(wire, 2.0, 1.5) * width_scale
             parts.append(gather._rows(start, end, rgb, 1.0, width, 0.0))
+        if body_edges is not None:
+            parts.append(body_edges)
         glow = gather.trail_lines(scene, trails, scene.particle_colors(), width_scale,
                                   glowing=True) if have_trails else []
         overlay = []
@@ -152,7 +170,8 @@ class FrameState:
                    planes=tuple(_copy_plane(p) for p in scene.planes),
                    show_ground=bool(scene.show_ground),
                    ground_height=float(scene.ground_height), sky=scene.sky,
-                   positions=positions, look=look, gpu_links=gpu_links)
+                   positions=positions, look=look, gpu_links=gpu_links,
+                   body_boxes=body_boxes, body_casters=body_casters)
 
 
 def _joined(parts: list[np.ndarray]) -> np.ndarray:

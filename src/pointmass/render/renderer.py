@@ -252,7 +252,8 @@ class Renderer:
             n = frame.particles                      # anchors cast no shadow
             if hardware:
                 n_casters = self._casters.put(np.concatenate(
-                    [self._spheres.host[:n], self._shadows.box_rows(scene)]))
+                    [self._spheres.host[:n], self._shadows.box_rows(scene),
+                     frame.body_casters]))
             else:
                 self._shadows.update(scene, self._spheres.host[:n], style.SHADOW_STRENGTH)
         t2 = time.perf_counter()
@@ -439,8 +440,11 @@ class Renderer:
         light = tuple(float(x) for x in light_world)
         if not translucent:
             solid = [b for b in scene.boxes if not b.wireframe]
-            if solid:
-                n = self._boxes.put(geometry.box_instances(solid))
+            rows = geometry.box_instances(solid)
+            if scene.body_boxes is not None and len(scene.body_boxes):
+                rows = np.concatenate([rows, scene.body_boxes])
+            if len(rows):
+                n = self._boxes.put(rows)
                 boxes = self.programs["mesh_instanced"]
                 boxes["u_view_proj"].write(vp.tobytes())
                 boxes["u_light"].value = light
