@@ -227,3 +227,36 @@ def test_pair_links_are_drawn_from_the_gpu_and_anchored_ones_stay_rows(ctx):
     finally:
         r.release()
         soft.release()
+
+
+def test_body_rows_from_the_arrays_equal_the_software_rows():
+    """bodies.body_arrays (numpy over the bodies' arrays) gives exactly the box instances,
+    edges, shadow casters, balls and spin markers the software path builds body by body."""
+    from pointmass.render import bodies as bv
+    from pointmass.render import geometry
+    from pointmass.render.shadows import ShadowMap
+    from pointmass.rigid.shapes import Box, Sphere
+
+    rng = np.random.default_rng(5)
+    world = pm.World()
+    for k in range(6):
+        q = rng.normal(size=4)
+        shape = Sphere(0.2 + 0.05 * k) if k % 2 else Box((0.2, 0.3 + 0.1 * k, 0.4))
+        world.add_body(shape, (k, 1.0 + k, -k), orientation=tuple(q / np.linalg.norm(q)),
+                       mass=np.inf if k == 4 else 1.0)
+    bodies = world.bodies
+    fast = bv.body_arrays(bodies, 8)
+    visuals = bv.box_visuals(bodies)
+    np.testing.assert_array_equal(fast["boxes"], geometry.box_instances(visuals))
+    start, end = geometry.box_edge_lines(visuals)
+    np.testing.assert_array_equal(fast["edge_start"], start)
+    np.testing.assert_array_equal(fast["edge_end"], end)
+
+    class Boxes:
+        boxes = visuals
+
+    np.testing.assert_array_equal(fast["casters"], ShadowMap.box_rows(Boxes))
+    balls, markers = bv.sphere_rows(bodies, 8)
+    assert len(balls) == 3
+    np.testing.assert_array_equal(fast["balls"], balls)
+    np.testing.assert_array_equal(fast["markers"], markers)
