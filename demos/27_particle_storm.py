@@ -1,5 +1,6 @@
-"""A million particles in a dust storm: a whirlwind that lifts them in its core and lets them
-fall outside it, round and round, shadows and all.
+"""A million particles in a dust storm, lifted in a whirlwind's core and falling outside it.
+
+Round and round, shadows and all.
 
 Each particle is dragged toward the local wind (a drag force k·m·(wind − v), k per second) under
 gravity. The wind is a Rankine vortex (a core of radius ``core`` turning as a solid body at
