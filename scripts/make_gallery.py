@@ -23,7 +23,8 @@ ANIMATED = {"ballistic": 3.0, "fireworks": 3.0, "newtons_cradle": 3.0, "ball_pit
             "side_library": 3.0, "bridge": 3.0, "fracture": 3.0, "tennis_racket": 3.0,
             "ragdoll": 3.0, "spinning_top": 3.0}
 STILL_TIME = {"projectile": 1.6, "terminal_velocity": 5.0, "spring_pair": 1.0, "cloth": 3.0,
-              "ball_pit": 6.0, "buoyancy": 4.0, "fireworks": 1.5, "sailboat": 3.0}
+              "ball_pit": 6.0, "buoyancy": 4.0, "fireworks": 1.5, "sailboat": 3.0,
+              "particle_storm": 6.0}
 CLI = [sys.executable, "-m", "pointmass"]
 
 

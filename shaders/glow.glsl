@@ -8,8 +8,18 @@
 #if defined VERTEX_SHADER
 
 in vec2 in_corner;        // quad corner in [-1, 1]^2
+#if defined SPLIT
+// SPLIT (the hardware path): the particles' own buffers, positions uploaded every frame, radius
+// and color only when they change; with u_palette the color is the default palette's, by index.
+in vec3 in_center;        // [m]
+in float in_radius;       // [m] (0 hides it)
+in vec4 in_rgba;          // rgb in [0, 1] (normalized bytes), a: 1 glows
+uniform bool u_palette;
+uniform vec3 u_palette_rgb[8];
+#else
 in vec4 in_sphere;        // xyz centre [m], w radius [m] (0 hides it)
 in vec4 in_color;         // rgb in [0, 1], a: 1 to glow
+#endif
 
 uniform mat4 u_view;
 uniform mat4 u_proj;
@@ -23,6 +33,10 @@ flat out float v_core;    // core radius [px]
 flat out float v_reach;   // halo radius [px]
 
 void main() {
+#if defined SPLIT
+    vec4 in_sphere = vec4(in_center, in_radius);
+    vec4 in_color = vec4(u_palette ? u_palette_rgb[gl_InstanceID % 8] : in_rgba.rgb, in_rgba.a);
+#endif
     vec4 eye = u_view * vec4(in_sphere.xyz, 1.0);
     vec4 clip = u_proj * eye;
     v_color = in_color.rgb;

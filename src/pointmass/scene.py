@@ -144,6 +144,10 @@ class Scene:
     glow: bool | np.ndarray = False
     """Draw particles as unlit glowing sprites (a bright core and a soft halo, added to what is
     behind them, with additive tapering trails): True for all, or a boolean mask (N,)."""
+    look_version: int = 0
+    """Bumped by ``look_changed()``: tells a renderer that caches the particles' look on the
+    GPU (the hardware path) that radii, ``colors``, ``hidden`` or ``glow`` were edited in place
+    (needed above ``pointmass.render.look.COMPARE_MAX`` particles, where it stops comparing)."""
 
     def __post_init__(self) -> None:
         if self.camera is None:
@@ -151,6 +155,11 @@ class Scene:
             self.camera = CameraHint.framing(
                 np.vstack([p.position, b.position]),
                 np.concatenate([p.radius, np.linalg.norm(b.size, axis=1)]), keep_in_view=True)
+
+    def look_changed(self) -> None:
+        """Say that particle radii, ``colors``, ``hidden`` or ``glow`` were changed in place
+        (assigning a new array is seen without this)."""
+        self.look_version += 1
 
     @property
     def time(self) -> float:

@@ -14,7 +14,7 @@ from pointmass.params import param_specs
 
 NAMES = [demo_name(p) for p in demo_paths()]
 #: Smaller versions of the big scenes, so the whole suite stays quick.
-SMALL = {"ball_pit": ["count=200"], "cloth": ["size=10"]}
+SMALL = {"ball_pit": ["count=200"], "cloth": ["size=10"], "particle_storm": ["count=5000"]}
 #: Simulated seconds per demo: long enough for its oracle to have something to judge.
 SECONDS = {"terminal_velocity": 5.5, "buoyancy": 9.0, "newtons_cradle": 1.5, "ragdoll": 4.5}
 

@@ -37,10 +37,15 @@ class ViewerWindow(pyglet.window.Window):
                  output_dir=".", visible=True, overlap: bool | None = None) -> None:
         config = pyglet.gl.Config(major_version=3, minor_version=3, forward_compatible=True,
                                   double_buffer=True, depth_size=24)
+        if sys.platform.startswith("linux"):
+            # An earlier offscreen render's EGL context, if any, let go of *before* pyglet
+            # makes its window: pyglet's own set-up calls (its shader programs, the window's
+            # uniform buffer) otherwise land in the EGL context, and whether their names exist
+            # in the window's context then depends on what that EGL context made (a render on
+            # the hardware path before a window: GL_INVALID_OPERATION at the first resize).
+            release_current_egl()
         super().__init__(size[0], size[1], caption=title, resizable=True, config=config,
                          visible=visible, vsync=False)
-        if sys.platform.startswith("linux"):
-            release_current_egl()     # an earlier offscreen render's context, if any
         self.switch_to()
         self.ctx = moderngl.create_context()
         self.gl_screen = self.ctx.detect_framebuffer(0)

@@ -70,3 +70,61 @@ def sphere_rows(bodies, floats: int) -> tuple[np.ndarray, np.ndarray]:
         rows[:, 3] = MARKER_SCALE * r[k]
         rows[:, 4:7] = MARKER_COLORS
     return balls, markers
+
+
+def rotations(quaternions: np.ndarray) -> np.ndarray:
+    """Rotation matrices (N, 3, 3) of unit quaternions (N, 4) (w, x, y, z): ``world_rotation``
+    for all at once."""
+    w, x, y, z = (quaternions[:, k] for k in range(4))
+    return np.stack([
+        np.stack([1 - 2 * (y * y + z * z), 2 * (x * y - w * z), 2 * (x * z + w * y)], -1),
+        np.stack([2 * (x * y + w * z), 1 - 2 * (x * x + z * z), 2 * (y * z - w * x)], -1),
+        np.stack([2 * (x * z - w * y), 2 * (y * z + w * x), 1 - 2 * (x * x + y * y)], -1),
+    ], 1)
+
+
+def body_arrays(bodies, floats: int) -> dict[str, np.ndarray]:
+    """The hardware path's rigid bodies, straight from the bodies' arrays in a few numpy passes
+    (no Python loop over bodies, no BoxVisual per box): "boxes" (K, BOX_FLOATS) box instance
+    rows (``geometry.box_instances``' layout), "edges" (12 K, 3) × 2 starts and ends with
+    "edge_rgb" (12 K, 3), "casters" (K, floats) the balls whose blobs the boxes cast
+    (``ShadowMap.box_rows``), and "balls" / "markers" (``sphere_rows``)."""
+    from .geometry import _CUBE_CORNERS, _CUBE_EDGES, BOX_FLOATS
+
+    n = bodies.count
+    colors = body_colors(bodies)
+    box = np.flatnonzero(bodies.shape[:n] == BOX)
+    out: dict[str, np.ndarray] = {}
+    center = bodies.position[box]
+    half = bodies.size[box]
+    model = np.concatenate([rotations(bodies.orientation[box]) * half[:, None, :],
+                            center[:, :, None]], axis=2)                 # (K, 3, 4)
+    rows = np.empty((len(box), BOX_FLOATS), np.float32)
+    rows[:, :12] = model.reshape(-1, 12)
+    rows[:, 12:15] = colors[box]
+    rows[:, 15] = 1.0
+    out["boxes"] = rows
+    m = rows[:, :12].astype(float).reshape(-1, 3, 4)                     # as box_edge_lines
+    corners = np.einsum("nij,kj->nki", m[:, :, :3], _CUBE_CORNERS) + m[:, None, :, 3]
+    out["edge_start"] = corners[:, _CUBE_EDGES[:, 0]].reshape(-1, 3)
+    out["edge_end"] = corners[:, _CUBE_EDGES[:, 1]].reshape(-1, 3)
+    out["edge_rgb"] = np.repeat(colors[box], 12, axis=0)
+    casters = np.zeros((len(box), floats), np.float32)
+    casters[:, 0:3] = center
+    casters[:, 3] = 0.75 * np.linalg.norm(half, axis=1)
+    out["casters"] = casters
+
+    idx = np.flatnonzero(bodies.shape[:n] == SPHERE)
+    pos, r = bodies.position[idx], bodies.size[idx, 0]
+    balls = np.zeros((len(idx), floats), np.float32)
+    balls[:, 0:3] = pos
+    balls[:, 3] = r
+    balls[:, 4:7] = colors[idx]
+    markers = np.zeros((len(idx), 3, floats), np.float32)
+    axes = rotations(bodies.orientation[idx])                  # columns: each body's axes
+    markers[:, :, 0:3] = pos[:, None, :] + r[:, None, None] * axes.transpose(0, 2, 1)
+    markers[:, :, 3] = MARKER_SCALE * r[:, None]
+    markers[:, :, 4:7] = MARKER_COLORS
+    out["balls"] = balls
+    out["markers"] = markers.reshape(-1, floats)
+    return out

@@ -14,13 +14,36 @@ import dataclasses
 from dataclasses import dataclass
 
 import numpy as np
+from numba import njit, prange
 
 from ..scene import BoxVisual, PlaneVisual, Scene
 from . import bodies as body_visuals
 from . import gather, geometry, manifolds
+from .gpu_links import pair_links
+from .look import LookTracker, ParticleLook
 from .picking import drawn_radii
 
 _NO_LINES = np.zeros((0, gather.LINE_FLOATS), np.float32)
+
+
+@njit(cache=True, parallel=True, nogil=True)
+def _to_float32(src, out):
+    # The hardware path's one pass over the particles per frame, on every core (numpy's
+    # astype is one thread: 5 ms for a million positions on a 16-core GPU host).
+    for i in prange(src.shape[0]):
+        out[i, 0] = src[i, 0]
+        out[i, 1] = src[i, 1]
+        out[i, 2] = src[i, 2]
+
+
+def positions_float32(position: np.ndarray) -> np.ndarray:
+    """A float32 copy of (N, 3) positions."""
+    out = np.empty(position.shape, np.float32)
+    if len(position) >= 65_536:
+        _to_float32(position, out)
+    else:
+        out[:] = position
+    return out
 
 
 @dataclass(frozen=True)
@@ -39,6 +62,17 @@ class FrameState:
             manifolds' points, normals and outlines), caller lines.
         boxes, planes: Copies of the scene's boxes and planes.
         show_ground, ground_height, sky: The scene's backdrop.
+        positions: The hardware path's particle positions ((N, 3) float32, the one copy of
+            the particles it makes per frame), or None (the software path: the particles
+            are the first sphere rows). With them ``spheres`` holds only the rest (sphere
+            bodies, their markers, anchors) and ``particles`` counts the casters among those.
+        look: The hardware path's particle look when it changed since the last frame drawn
+            (``look.ParticleLook``), else None.
+        gpu_links: The hardware path's links between particle pairs (``gpu_links``), drawn
+            from the GPU's positions; ``lines`` then holds only the others.
+        body_boxes, body_casters: The hardware path's box bodies as box instance rows and as
+            shadow casters, made from the bodies' arrays (``bodies.body_arrays``); ``boxes``
+            then holds only the scene's own boxes. None on the software path.
     """
 
     time: float
@@ -52,10 +86,16 @@ class FrameState:
     show_ground: bool
     ground_height: float
     sky: object
+    positions: np.ndarray | None = None
+    look: ParticleLook | None = None
+    gpu_links: tuple = ()
+    body_boxes: np.ndarray | None = None
+    body_casters: np.ndarray | None = None
 
     @classmethod
     def capture(cls, scene: Scene, *, trails=None, show_contacts: bool = False,
-                extra_lines=None, width_scale: float = 1.0) -> FrameState:
+                extra_lines=None, width_scale: float = 1.0,
+                looks: LookTracker | None = None) -> FrameState:
         """Copy what the renderer needs out of ``scene`` now.
 
         Args:
@@ -64,24 +104,48 @@ class FrameState:
                 normals) and rigid bodies' manifolds (``manifolds.py``).
             extra_lines: (start, end, rgb) triples drawn on top (the viewer's drag spring).
             width_scale: Line widths' scale (the renderer's: its height / 720, at least 1).
+            looks: The hardware path's look tracker: the particles are taken as positions
+                and, when it changed, their look; None: as sphere rows (the software path).
         """
         n = scene.world.particles.count
         anchors = gather.anchor_points(scene) if scene.show_links else np.zeros((0, 3))
-        spheres = np.empty((n + len(anchors), gather.SPHERE_FLOATS), np.float32)
-        gather.fill_spheres(scene, spheres, anchors)
+        positions = look = None
+        gpu_links: tuple = ()
+        if looks is None:
+            spheres = np.empty((n + len(anchors), gather.SPHERE_FLOATS), np.float32)
+            gather.fill_spheres(scene, spheres, anchors)
+            first = n
+        else:
+            positions = positions_float32(scene.world.particles.position)
+            look = looks.capture(scene)
+            if scene.show_links:
+                gpu_links = tuple(pair_links(gather.generators(scene)))
+            spheres = gather.anchor_rows(scene, anchors)
+            first = 0
         # Rigid bodies: sphere bodies after the particles (they cast shadows too), their spin
         # markers with the anchors (they do not); box bodies join the scene's boxes.
         bodies = scene.world.bodies
-        balls, markers = body_visuals.sphere_rows(bodies, gather.SPHERE_FLOATS)
+        body_boxes = body_casters = body_edges = None
+        if looks is None:
+            balls, markers = body_visuals.sphere_rows(bodies, gather.SPHERE_FLOATS)
+            boxes = [*scene.boxes, *body_visuals.box_visuals(bodies)]
+        else:
+            # No BoxVisual per body: instance rows straight from the bodies' arrays.
+            arrays = body_visuals.body_arrays(bodies, gather.SPHERE_FLOATS)
+            balls, markers = arrays["balls"], arrays["markers"]
+            boxes = list(scene.boxes)
+            body_boxes, body_casters = arrays["boxes"], arrays["casters"]
+            if len(body_boxes):
+                body_edges = gather.line_rows(arrays["edge_start"], arrays["edge_end"],
+                                              arrays["edge_rgb"] * 0.45, 1.0, 1.5 * width_scale)
         if len(balls) or len(markers):
-            spheres = np.concatenate([spheres[:n], balls, markers, spheres[n:]])
-        boxes = [*scene.boxes, *body_visuals.box_visuals(bodies)]
-        casters = n + len(balls)
+            spheres = np.concatenate([spheres[:first], balls, markers, spheres[first:]])
+        casters = first + len(balls)
 
         have_trails = trails is not None and len(trails)
         parts: list[np.ndarray] = []
         if scene.show_links:
-            parts += gather.link_lines(scene, width_scale)
+            parts += gather.link_lines(scene, width_scale, skip=gpu_links)
         if have_trails:
             parts += gather.trail_lines(scene, trails, scene.particle_colors(), width_scale)
         if boxes:
@@ -91,6 +155,8 @@ class FrameState:
                 * np.where(wire, 1.0, 0.45)[:, None]
             width = np.where(wire, 2.0, 1.5) * width_scale
             parts.append(gather._rows(start, end, rgb, 1.0, width, 0.0))
+        if body_edges is not None:
+            parts.append(body_edges)
         glow = gather.trail_lines(scene, trails, scene.particle_colors(), width_scale,
                                   glowing=True) if have_trails else []
         overlay = []
@@ -103,7 +169,9 @@ class FrameState:
                    boxes=tuple(_copy_box(b) for b in boxes),
                    planes=tuple(_copy_plane(p) for p in scene.planes),
                    show_ground=bool(scene.show_ground),
-                   ground_height=float(scene.ground_height), sky=scene.sky)
+                   ground_height=float(scene.ground_height), sky=scene.sky,
+                   positions=positions, look=look, gpu_links=gpu_links,
+                   body_boxes=body_boxes, body_casters=body_casters)
 
 
 def _joined(parts: list[np.ndarray]) -> np.ndarray:

@@ -61,11 +61,17 @@ def fill_spheres(scene: Scene, out: np.ndarray, anchors: np.ndarray) -> int:
     out[:n, 7] = glow_mask(scene)
     a = len(anchors)
     if a:
-        out[n:n + a, 0:3] = anchors
-        out[n:n + a, 3] = scene.point_radius * style.ANCHOR_SCALE
-        out[n:n + a, 4:7] = style.ANCHOR_COLOR
-        out[n:n + a, 7] = 0.0
+        out[n:n + a] = anchor_rows(scene, anchors)
     return n + a
+
+
+def anchor_rows(scene: Scene, anchors: np.ndarray) -> np.ndarray:
+    """Sphere rows for the anchor markers (small dark balls at each link's fixed end)."""
+    rows = np.zeros((len(anchors), SPHERE_FLOATS), np.float32)
+    rows[:, 0:3] = anchors
+    rows[:, 3] = scene.point_radius * style.ANCHOR_SCALE
+    rows[:, 4:7] = style.ANCHOR_COLOR
+    return rows
 
 
 def _rows(start, end, rgb, alpha, width, dash) -> np.ndarray:
@@ -80,11 +86,14 @@ def _rows(start, end, rgb, alpha, width, dash) -> np.ndarray:
     return rows
 
 
-def link_lines(scene: Scene, width_scale: float) -> list[np.ndarray]:
-    """Line rows for every spring, bungee, cable and rod, each kind with its own look."""
+def link_lines(scene: Scene, width_scale: float, skip=()) -> list[np.ndarray]:
+    """Line rows for every spring, bungee, cable and rod, each kind with its own look (but the
+    generators in ``skip``: the hardware path draws those from the GPU)."""
     out = []
     particles = scene.world.particles
     for gen in generators(scene):
+        if any(gen is g for g in skip):
+            continue
         kind = getattr(gen, "kind", None)
         seg = getattr(gen, "segments", None)
         if kind not in LINK_KINDS or seg is None:

@@ -2,8 +2,10 @@
 
 The Simulation advances 1/fps simulated seconds per frame (its fixed steps, with the remainder
 carried over, so the trajectory is the window's and a probe run's), whatever the machine's
-speed, so videos play at true speed. Frames go to the encoder through a bounded queue
-(rendering and encoding overlap; memory stays bounded). Ctrl-C or an error mid-recording still
+speed, so videos play at true speed. Frames are read back through pixel-buffer objects, two in
+flight (``Renderer.read_rgb_later``: the GPU copies a frame while the next is simulated and
+drawn), and go to the encoder through a bounded queue (rendering and encoding overlap; memory
+stays bounded). Ctrl-C or an error mid-recording still
 closes the file, so it plays with the frames so far; a bad output path fails before any
 simulation runs.
 """
@@ -139,15 +141,26 @@ def record(simulation, path: str | Path | VideoWriter, *, seconds: float, fps: i
             camera.track(simulation.scene)
             renderer.render(simulation.scene, camera, trails=simulation.trails,
                             show_contacts=show_contacts)
-            encoder.put(renderer.read_rgb())
+            rgb = renderer.read_rgb_later()
+            if rgb is not None:
+                encoder.put(rgb)
             done = index + 1
             if on_frame is not None:
                 on_frame(index)
             if bar is not None:
                 bar.update(done)
             simulation.advance(1.0 / fps)
+        for rgb in renderer.read_pending():      # the last frames, still in flight
+            encoder.put(rgb)
     finally:
-        # Whatever happened, encode what is queued and close the file so it plays.
+        # Whatever happened, encode what was drawn and is queued, and close the file so it
+        # plays.
+        if renderer is not None and encoder.is_alive():
+            try:
+                for rgb in renderer.read_pending():
+                    encoder.put(rgb)
+            except Exception:  # already failing: keep the first error
+                pass
         if encoder.is_alive():
             encoder.finish()
         writer.close()

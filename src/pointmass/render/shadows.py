@@ -47,12 +47,7 @@ class ShadowMap:
             strength: Darkness of a resting sphere's shadow, in [0, 1].
         """
         ground = float(scene.ground_height)
-        solid = [b for b in scene.boxes if not b.wireframe]
-        box_rows = np.zeros((len(solid), 4), np.float32)
-        if solid:
-            # A box casts the blob of a ball of about its size.
-            box_rows[:, 0:3] = [b.center for b in solid]
-            box_rows[:, 3] = [0.75 * float(np.linalg.norm(b.half_size)) for b in solid]
+        box_rows = self.box_rows(scene)[:, :4]
         self.used = TEXELS if len(rows) <= CROWD else TEXELS // 2
         casters = np.concatenate([rows[rows[:, 7] < 0.5, :4], box_rows])
         self.region = shadow_region(casters, ground, self.used)
@@ -60,6 +55,17 @@ class ShadowMap:
             return
         dark = shadow_map(casters, self.region, ground, strength, self.used)
         self.texture.write(dark, viewport=(0, 0, self.used, self.used))
+
+    @staticmethod
+    def box_rows(scene) -> np.ndarray:
+        """Sphere rows (8 floats: centre, radius, rgb, glow 0) of the balls whose blobs the
+        solid boxes cast: a box casts the blob of a ball of about its size."""
+        solid = [b for b in scene.boxes if not b.wireframe]
+        rows = np.zeros((len(solid), 8), np.float32)
+        if solid:
+            rows[:, 0:3] = [b.center for b in solid]
+            rows[:, 3] = [0.75 * float(np.linalg.norm(b.half_size)) for b in solid]
+        return rows
 
     def release(self) -> None:
         self.texture.release()
