@@ -105,6 +105,10 @@ def run_pool(sweep: Sweep, runs: list[RunSpec], root: Path, on_done: OnDone,
     OOM killer, a segfault in a user's code), the pool is started again for the runs not yet
     done, at most ``max_retries`` times; the runs still left are then recorded as crashed."""
     needs_main = b"__main__" in check_picklable(sweep)
+    if needs_main and getattr(sys.modules.get("__main__"), "__file__", None) is None:
+        raise ValueError("the scene function (or a probe) is defined in a notebook or an "
+                         "interactive session, which worker processes cannot import: move it "
+                         "into a module, or use backend=\"ray\" or \"serial\"")
     todo = list(runs)
     for _attempt in range(max_retries + 1):
         lost = _pool_pass(sweep, todo, root, on_done, on_crash, workers, needs_main)
@@ -187,7 +191,10 @@ def run_ray(sweep: Sweep, runs: list[RunSpec], root: Path, on_done: OnDone, on_c
     if not ray.is_initialized():
         options = {"log_to_driver": False, "configure_logging": False}
         if address == "local":
-            ray.init(num_cpus=workers, include_dashboard=False, **options)
+            # A private single-machine cluster: it talks over loopback only, and nothing
+            # listens on the machine's network interfaces.
+            ray.init(num_cpus=workers, include_dashboard=False, _node_ip_address="127.0.0.1",
+                     **options)
         else:
             ray.init(address=address, **options)
         started_here = True

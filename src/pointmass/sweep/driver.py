@@ -163,6 +163,9 @@ def execute(sweep: Sweep, out: str | Path, *, backend: str = "pool", workers: in
             raise
         finally:
             bar.close()
+            # What a worker killed mid-run left (Ray with a shared folder: the worker cannot
+            # clean up after its own death); nothing is in flight any more.
+            layout.remove_stale(root)
             rows = rows_for(root, runs)
             write_index(root, rows)
             result.failed = {r["run_id"]: r["error"] for r in rows if r["outcome"] != "ok"}

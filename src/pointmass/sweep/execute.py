@@ -145,8 +145,10 @@ def execute_into(sweep: Sweep, run: RunSpec, out: Path) -> dict[str, Any]:
     sim_seconds = 0.0
     outputs: list[str] = []
     error = None
+    every_param = None
     try:
         sim = simulation_for(sweep, run)
+        every_param = sim.param_values() or None  # a demo's whole Params, defaults included
         t0, dt = sim.time, sim.dt
         sampler = _Sampler(sweep, sim)
         total = max(1, round(sweep.seconds * sweep.fps))
@@ -176,6 +178,7 @@ def execute_into(sweep: Sweep, run: RunSpec, out: Path) -> dict[str, Any]:
             sim_seconds = sim.time - t0
     meta = {
         "run_id": run.run_id, "index": run.index, "params": run.params, "seed": run.seed,
+        "demo_params": every_param,
         "source": sweep.settings()["source"], "pointmass_version": __version__,
         "outcome": "error" if error else "ok", "error": error,
         "steps": steps, "frames": frames, "sim_seconds": sim_seconds,
