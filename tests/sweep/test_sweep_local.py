@@ -169,3 +169,19 @@ def test_ray_without_ray_installed_says_so_in_one_line(tmp_path):
         'pointmass: error: the Ray backend needs ray, which is not installed: pip install '
         '"pointmass[cluster]"']
     assert not (tmp_path / "out").exists()
+
+
+def test_ray_with_no_cluster_there_fails_at_once_in_one_line(tmp_path):
+    import socket
+
+    with socket.socket() as probe:                   # a loopback port nothing listens on
+        probe.bind(("127.0.0.1", 0))
+        port = probe.getsockname()[1]
+    result = subprocess.run([sys.executable, "-m", "pointmass", "sweep", "ball_pit", "-o",
+                             str(tmp_path / "out"), "--ray", f"127.0.0.1:{port}"],
+                            check=False, capture_output=True, text=True, timeout=120)
+    assert result.returncode == 1
+    assert result.stderr.splitlines() == [
+        f"pointmass: error: no Ray cluster at 127.0.0.1:{port} (Connection refused); start one "
+        "with `ray start --head`"]
+    assert not (tmp_path / "out").exists()          # nothing written before the connection

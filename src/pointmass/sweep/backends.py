@@ -17,6 +17,7 @@ import multiprocessing
 import os
 import pickle
 import signal
+import socket
 import sys
 from collections.abc import Callable
 from concurrent.futures import FIRST_COMPLETED, ProcessPoolExecutor, wait
@@ -176,54 +177,69 @@ def import_ray():
     return ray
 
 
+def connect_ray(address: str | None, workers: int | None = None):
+    """Connect to the cluster at ``address`` ("auto": the one started on this machine with
+    ``ray start``; "local": a private one for this sweep; or "HOST:PORT" of its head); returns
+    (ray, whether this call connected, so must disconnect). Fails in seconds with one line when
+    there is no cluster there (Ray itself retries for minutes)."""
+    ray = import_ray()
+    if ray.is_initialized():
+        return ray, False
+    options = {"log_to_driver": False, "configure_logging": False}
+    if address == "local":
+        # A private single-machine cluster: it talks over loopback only, and nothing listens
+        # on the machine's network interfaces.
+        ray.init(num_cpus=workers, include_dashboard=False, _node_ip_address="127.0.0.1",
+                 **options)
+        return ray, True
+    if address not in (None, "auto") and not address.startswith("ray://"):
+        host, _, port = address.rpartition(":")
+        if not host or not port.isdigit():
+            raise ValueError(f"ray address must be auto, local or HOST:PORT, got {address!r}")
+        try:
+            socket.create_connection((host.strip("[]"), int(port)), timeout=10).close()
+        except OSError as exc:
+            raise ConnectionError(f"no Ray cluster at {address} ({exc.strerror or exc}); start "
+                                  "one with `ray start --head`") from None
+    try:
+        ray.init(address=address, **options)
+    except ConnectionError as exc:
+        raise ConnectionError(f"no Ray cluster found ({str(exc).splitlines()[0]}); start one "
+                              "with `ray start --head`, or pass its HOST:PORT") from None
+    return ray, True
+
+
 def run_ray(sweep: Sweep, runs: list[RunSpec], root: Path, on_done: OnDone, on_crash: OnCrash,
-            *, address: str | None, max_retries: int, shared_folder: bool,
-            workers: int | None = None) -> None:
-    """One Ray task per run on the cluster at ``address`` ("auto": the one started on this
-    machine with ``ray start``; "local": a private one for this sweep; or "HOST:PORT").
+            *, max_retries: int, shared_folder: bool) -> None:
+    """One Ray task per run on the connected cluster (``connect_ray``).
 
     A task whose worker process dies is retried by Ray up to ``max_retries`` times. With
     ``shared_folder`` the workers write into ``root`` themselves (it must be the same path on
     every node, e.g. NFS); otherwise each returns its files and the driver writes them.
     """
     ray = import_ray()
-    started_here = False
-    if not ray.is_initialized():
-        options = {"log_to_driver": False, "configure_logging": False}
-        if address == "local":
-            # A private single-machine cluster: it talks over loopback only, and nothing
-            # listens on the machine's network interfaces.
-            ray.init(num_cpus=workers, include_dashboard=False, _node_ip_address="127.0.0.1",
-                     **options)
-        else:
-            ray.init(address=address, **options)
-        started_here = True
+    task = ray.remote(_ray_task).options(
+        num_cpus=1, max_retries=max_retries, retry_exceptions=False,
+        runtime_env={"env_vars": dict(WORKER_ENV)})
+    target = str(root.resolve()) if shared_folder else None
+    sweep_ref = ray.put(sweep)
+    refs = {task.remote(sweep_ref, run, target): run for run in runs}
+    pending = list(refs)
     try:
-        task = ray.remote(_ray_task).options(
-            num_cpus=1, max_retries=max_retries, retry_exceptions=False,
-            runtime_env={"env_vars": dict(WORKER_ENV)})
-        target = str(root.resolve()) if shared_folder else None
-        sweep_ref = ray.put(sweep)
-        refs = {task.remote(sweep_ref, run, target): run for run in runs}
-        pending = list(refs)
-        try:
-            while pending:
-                done, pending = ray.wait(pending, num_returns=1)
-                for ref in done:
-                    _ray_result(ray, ref, refs[ref], root, shared_folder, on_done, on_crash)
-        except BaseException:
-            # Ctrl-C/SIGTERM: cancel what is queued or running (a running task gets a
-            # KeyboardInterrupt and removes its temporary folder); keep what already finished.
-            for ref in pending:
-                ray.cancel(ref)
-            ready, _ = ray.wait(pending, num_returns=len(pending), timeout=30)
-            for ref in ready:
-                with contextlib.suppress(Exception):
-                    _ray_result(ray, ref, refs[ref], root, shared_folder, on_done, on_crash)
-            raise
-    finally:
-        if started_here:
-            ray.shutdown()
+        while pending:
+            done, pending = ray.wait(pending, num_returns=1)
+            for ref in done:
+                _ray_result(ray, ref, refs[ref], root, shared_folder, on_done, on_crash)
+    except BaseException:
+        # Ctrl-C/SIGTERM: cancel what is queued or running (a running task gets a
+        # KeyboardInterrupt and removes its temporary folder); keep what already finished.
+        for ref in pending:
+            ray.cancel(ref)
+        ready, _ = ray.wait(pending, num_returns=len(pending), timeout=30)
+        for ref in ready:
+            with contextlib.suppress(Exception):
+                _ray_result(ray, ref, refs[ref], root, shared_folder, on_done, on_crash)
+        raise
 
 
 def _ray_result(ray, ref, run, root, shared_folder, on_done, on_crash) -> None:

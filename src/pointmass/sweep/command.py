@@ -176,6 +176,8 @@ def cmd_sweep(args) -> int:
                      progress=not args.quiet)
     except (ValueError, TypeError, RuntimeError) as exc:
         raise cli.UsageError(str(exc)) from None
+    except ConnectionError as exc:  # no Ray cluster where --ray points
+        raise cli.Failure(str(exc)) from None
     print(result.summary())
     for run_id, error in list(result.failed.items())[:5]:
         print(f"  failed {run_id}: {error}")

@@ -112,11 +112,22 @@ def execute(sweep: Sweep, out: str | Path, *, backend: str = "pool", workers: in
         raise ValueError(f"workers must be an integer >= 1 or None (every core), got {workers!r}")
     if not (isinstance(max_retries, int) and max_retries >= 0):
         raise ValueError(f"max_retries must be an integer >= 0, got {max_retries!r}")
-    if backend == "ray":
-        backends.import_ray()  # one line naming the extra, before anything is written
     runs = sweep.runs()
     check_runs(sweep, runs)
-    root = Path(out)
+    disconnect = None
+    if backend == "ray":  # before anything is written: no ray, or no cluster, is one line
+        ray, connected = backends.connect_ray(ray_address, workers)
+        disconnect = ray.shutdown if connected else None
+    try:
+        return _execute(sweep, runs, Path(out), backend, workers, shared_folder, max_retries,
+                        retry_failed, progress)
+    finally:
+        if disconnect is not None:
+            disconnect()
+
+
+def _execute(sweep, runs, root, backend, workers, shared_folder, max_retries, retry_failed,
+             progress) -> SweepResult:
     root.mkdir(parents=True, exist_ok=True)
     (root / layout.RUNS).mkdir(exist_ok=True)
     started = time.perf_counter()
@@ -155,9 +166,8 @@ def execute(sweep: Sweep, out: str | Path, *, backend: str = "pool", workers: in
                 backends.run_pool(sweep, todo, root, on_done, on_crash,
                                   workers=workers or default_workers(), max_retries=max_retries)
             else:
-                backends.run_ray(sweep, todo, root, on_done, on_crash, address=ray_address,
-                                 max_retries=max_retries, shared_folder=shared_folder,
-                                 workers=workers)
+                backends.run_ray(sweep, todo, root, on_done, on_crash,
+                                 max_retries=max_retries, shared_folder=shared_folder)
         except KeyboardInterrupt:
             result.interrupted = True
             raise
