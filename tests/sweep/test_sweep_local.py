@@ -102,34 +102,42 @@ def _check_complete(out: Path) -> None:
     assert sorted(r["run_id"] for r in rows) == [f.name for f in folders]
 
 
-def test_sigterm_then_sigkill_mid_sweep_then_a_rerun_does_every_run_exactly_once(tmp_path):
+def _stop(out: Path, proc: subprocess.Popen, how: str) -> dict[str, str]:
+    """Stop a sweep the way ``how`` says; returns the runs then committed."""
+    if how == "ctrl-c":      # a terminal's Ctrl-C: SIGINT to the driver and its workers
+        os.killpg(proc.pid, signal.SIGINT)
+    elif how == "sigterm":   # `kill PID`: the driver only
+        proc.send_signal(signal.SIGTERM)
+    else:                    # no clean-up at all, for anyone
+        os.killpg(proc.pid, signal.SIGKILL)
+    _, stderr = proc.communicate(timeout=120)
+    if how != "sigkill":
+        # The runs in flight were committed, the index lists what is there, nothing temporary.
+        assert proc.returncode == {"ctrl-c": 130, "sigterm": 143}[how], stderr
+        assert "sweep stopped:" in stderr and "run the same sweep again" in stderr
+        assert [p.name for p in (out / "runs").iterdir() if p.name.startswith(".")] == []
+        assert len(sweep.load(out)) == len(_committed(out))
+    return _committed(out)
+
+
+def test_ctrl_c_sigterm_and_sigkill_mid_sweep_then_a_rerun_does_every_run_once(tmp_path):
     out = tmp_path / "pit"
-    # SIGTERM to the driver (as `kill PID` does): it stops after the runs in flight are
-    # committed, writes the index of what is there and exits with 143.
-    proc = _cli(*PIT, "-o", str(out))
-    _wait_for_runs(out, proc, 2)
-    proc.send_signal(signal.SIGTERM)
-    stdout, stderr = proc.communicate(timeout=120)
-    assert proc.returncode == 143, stderr
-    assert "sweep stopped:" in stderr and "run the same sweep again" in stderr
-    assert [p.name for p in (out / "runs").iterdir() if p.name.startswith(".")] == []
-    stopped = _committed(out)
-    assert len(sweep.load(out)) == len(stopped) < 12
-    # Go on, then SIGKILL the driver and its workers at once: no clean-up at all.
-    proc = _cli(*PIT, "-o", str(out))
-    _wait_for_runs(out, proc, len(stopped) + 3)
-    os.killpg(proc.pid, signal.SIGKILL)
-    proc.communicate()
-    before = _committed(out)
-    assert len(stopped) + 3 <= len(before) < 12
-    # The rerun removes what the kill left half-written and does only the missing runs.
+    committed: dict[str, str] = {}
+    for how, more in (("ctrl-c", 2), ("sigterm", 2), ("sigkill", 1)):
+        proc = _cli(*PIT, "-o", str(out))
+        _wait_for_runs(out, proc, len(committed) + more)
+        now = _stop(out, proc, how)
+        assert {k: now[k] for k in committed} == committed   # earlier runs untouched
+        assert len(committed) + more <= len(now) < 12, how
+        committed = now
+    # The rerun removes what SIGKILL left half-written and does only the missing runs.
     rerun = _cli(*PIT, "-o", str(out))
     stdout, stderr = rerun.communicate(timeout=300)
     assert rerun.returncode == 0, stderr
-    assert f"{12 - len(before)} runs executed, {len(before)} already done" in stdout
+    assert f"{12 - len(committed)} runs executed, {len(committed)} already done" in stdout
     _check_complete(out)
     after = _committed(out)
-    assert {k: after[k] for k in before} == before      # the finished runs were not redone
+    assert {k: after[k] for k in committed} == committed   # the finished runs were not redone
 
 
 def test_cli_help_and_bad_input():

@@ -122,41 +122,63 @@ def run_pool(sweep: Sweep, runs: list[RunSpec], root: Path, on_done: OnDone,
 
 
 def _pool_pass(sweep, runs, root, on_done, on_crash, workers, needs_main) -> list[RunSpec]:
-    """One pool's life; returns the runs lost to a dead worker."""
+    """One pool's life; returns the runs lost to a dead worker (or never started after it).
+
+    Runs are handed out one per idle worker, never queued ahead: a stop then waits only for
+    the runs actually executing (ProcessPoolExecutor would otherwise also run the calls it
+    has already queued for its workers)."""
     context = multiprocessing.get_context("spawn")  # no fork of a process with numba threads
-    # Python 3.11 starts the workers during the first submits, so both take effect for them.
-    with _environ(WORKER_ENV), _main_hidden(needs_main):
-        pool = ProcessPoolExecutor(min(workers, len(runs)), mp_context=context,
-                                   initializer=_worker_init)
-        futures = {pool.submit(execute_and_commit, sweep, run, str(root)): run for run in runs}
-    lost = []
+    size = min(workers, len(runs))
+    waiting = list(reversed(runs))
+    futures: dict = {}
+
+    broken = False
+
+    def submit() -> None:
+        nonlocal broken
+        # Python 3.11 starts the workers during the first submits: both take effect for them.
+        with _environ(WORKER_ENV), _main_hidden(needs_main):
+            try:
+                future = pool.submit(execute_and_commit, sweep, waiting[-1], str(root))
+            except BrokenProcessPool:  # a worker died; the runs left go to the next pool
+                broken = True
+                return
+        futures[future] = waiting.pop()
+
+    pool = ProcessPoolExecutor(size, mp_context=context, initializer=_worker_init)
+    lost: list[RunSpec] = []
     try:
+        for _ in range(size):
+            submit()
         pending = set(futures)
         while pending:
             done, pending = wait(pending, return_when=FIRST_COMPLETED)
             for future in done:
-                run = futures[future]
+                run = futures.pop(future)
                 try:
                     meta = future.result()
                 except BrokenProcessPool:
                     lost.append(run)
+                    broken = True
                     continue
                 except Exception as exc:  # the machinery failed (disk, pickling), not the run
                     from .execute import one_line
 
                     on_crash(run, one_line(exc))
-                    continue
-                on_done(run, meta)
+                else:
+                    on_done(run, meta)
+                if waiting and not broken:
+                    submit()
+                    pending = set(futures)
     except BaseException:
-        # Ctrl-C/SIGTERM: queued runs are cancelled, runs in flight finish and commit.
+        # Ctrl-C/SIGTERM: nothing new starts; the runs in flight finish and commit.
         pool.shutdown(wait=True, cancel_futures=True)
         for future, run in futures.items():
             if future.done() and not future.cancelled() and future.exception() is None:
-                with contextlib.suppress(Exception):
-                    on_done(run, future.result())
+                on_done(run, future.result())
         raise
     pool.shutdown(wait=True)
-    return sorted(lost, key=lambda r: r.index)
+    return sorted(lost + waiting, key=lambda r: r.index)
 
 
 # -- Ray -----------------------------------------------------------------------------------------
