@@ -102,3 +102,19 @@ def test_a_notebook_function_is_refused_for_the_pool_with_the_way_out(tmp_path):
         del sys.modules["__main__"].build
         if saved is not None:
             sys.modules["__main__"].__file__ = saved
+
+
+def test_a_sweep_without_clips_loads_no_renderer(tmp_path):
+    """The physics core stays free of GL: only a sweep that keeps clips imports the renderer
+    (in the worker that records them)."""
+    import subprocess
+    import sys
+
+    demo = write_spring_demo(tmp_path)
+    code = ("import sys\nfrom pointmass import sweep\n"
+            f"sweep.run({str(demo)!r}, {str(tmp_path / 'out')!r}, seconds=0.1, "
+            "probes=['positions'], backend='serial', progress=False)\n"
+            "print([m for m in ('moderngl', 'av', 'PIL', 'pyglet') if m in sys.modules])")
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
+                         check=True, timeout=120)
+    assert out.stdout.strip().splitlines()[-1] == "[]"
