@@ -59,3 +59,11 @@ def test_extending_a_sweep_keeps_the_ids_of_its_runs():
 def test_bad_sweeps_are_refused_naming_the_setting(kwargs, message):
     with pytest.raises(ValueError, match=message):
         Sweep("ball_pit", **kwargs)
+
+
+def test_a_float_parameter_drawn_between_integers_gets_floats():
+    runs = Sweep("bridge", random={"load_mass": (0, 50), "planks": (2, 12)}, draws=5).runs()
+    assert all(isinstance(r.params["load_mass"], float) for r in runs)
+    assert len({r.params["load_mass"] for r in runs}) == 5
+    assert all(isinstance(r.params["planks"], int) and 2 <= r.params["planks"] <= 12
+               for r in runs)

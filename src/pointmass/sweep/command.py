@@ -65,7 +65,7 @@ def parse_seeds(text: str):
     if re.fullmatch(r"\s*\d+\s*", text):
         return int(text)
     try:
-        return [int(s) for s in text.split(",")]
+        return [int(s) for s in text.split(",") if s.strip()]
     except ValueError:
         raise UsageError(f"--seeds expects a count (4) or a list (1,5,9), got {text!r}") from None
 
@@ -106,14 +106,14 @@ def add_sweep_parser(sub) -> None:
     p.add_argument("--grid", action="append", default=[], metavar="NAME=V1,V2,...",
                    help="values of a parameter; every combination is a run (repeatable)")
     p.add_argument("--random", action="append", default=[], metavar="NAME=LOW:HIGH|A,B,...",
-                   help="a parameter drawn at random: uniform in [LOW, HIGH] (integers if both "
-                   "are), or one of the choices (repeatable; needs --draws)")
+                   help="a parameter drawn at random: uniform in [LOW, HIGH] (integers for an "
+                   "integer parameter), or one of the choices (repeatable; needs --draws)")
     p.add_argument("--draws", type=cli._in_range(int, "--draws", 0, 10**6), default=0,
                    help="how many random draws (each combined with every grid point)")
     p.add_argument("--random-seed", type=int, default=0, help="seed of the draws (default 0)")
     p.add_argument("--seeds", type=str, default=None,
-                   help="seeds per point: a count N (0 … N-1) or a list 1,5,9 (given to the "
-                   "demo's seed parameter)")
+                   help="seeds per point: a count N (0 … N-1) or a list 1,5,9 (one seed: 7,); "
+                   "given to the demo's seed parameter")
     p.add_argument("--seconds", type=cli._in_range(float, "--seconds", 0.0, cli.MAX_SECONDS,
                                                     low_open=True), default=2.0,
                    help="simulated seconds per run (default 2)")

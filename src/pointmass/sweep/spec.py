@@ -65,7 +65,8 @@ class Sweep:
         snapshot: Keep the final state of every particle and body (``final.npz``).
         fixed: Parameters every run shares.
         grid: ``{name: [values]}``: every combination is a run.
-        random: ``{name: (low, high)}`` (uniform; integers when both ends are ints) or
+        random: ``{name: (low, high)}`` (uniform; integers when both ends are ints, unless
+            the demo's parameter is a float) or
             ``{name: [choices]}``, drawn ``draws`` times from ``random_seed``.
         draws: How many random draws (each combined with every grid point).
         seeds: An int n (seeds 0 … n-1), a list of seeds, or None (the scene's own seed).
@@ -161,13 +162,15 @@ class Sweep:
         if not self.random:
             return [{}]
         rng = np.random.default_rng(self.random_seed)
+        kinds = _demo_kinds(self.source)
         out = []
         for _ in range(self.draws):
             point = {}
             for name, space in self.random.items():  # insertion order: part of the sweep
                 if isinstance(space, tuple):
                     low, high = space
-                    if isinstance(low, int) and isinstance(high, int):
+                    if isinstance(low, int) and isinstance(high, int) \
+                            and kinds.get(name, int) is int:
                         point[name] = int(rng.integers(low, high, endpoint=True))
                     else:
                         point[name] = float(rng.uniform(low, high))
@@ -201,6 +204,17 @@ class Sweep:
 
     def probe_names(self) -> list[str]:
         return list(self.probes)
+
+
+def _demo_kinds(source) -> dict[str, type]:
+    """A demo's parameter types by name (a float parameter drawn from (0, 50) gets floats);
+    empty for a scene function."""
+    if not isinstance(source, str):
+        return {}
+    from .. import params as params_mod
+    from ..demo import load_demo
+
+    return {s.name: s.kind for s in params_mod.param_specs(load_demo(source).params_class)}
 
 
 def _demo_types(source) -> Callable[[str, Any], Any]:
