@@ -163,7 +163,7 @@ def cmd_sweep(args) -> int:
     clip = cli.parse_size(args.clip) if args.clip else None
     backend = "ray" if args.ray is not None else "serial" if args.serial else "pool"
     if backend == "ray":
-        from .backends import import_ray
+        from .cluster import import_ray
 
         import_ray()  # one line naming the extra when ray is missing
     try:

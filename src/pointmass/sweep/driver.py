@@ -13,7 +13,7 @@ import time
 from dataclasses import dataclass, field
 from pathlib import Path
 
-from . import backends
+from . import backends, cluster
 from . import folder as layout
 from .index import rows_for, write_index
 from .progress import SweepProgress
@@ -116,7 +116,7 @@ def execute(sweep: Sweep, out: str | Path, *, backend: str = "pool", workers: in
     check_runs(sweep, runs)
     disconnect = None
     if backend == "ray":  # before anything is written: no ray, or no cluster, is one line
-        ray, connected = backends.connect_ray(ray_address, workers)
+        ray, connected = cluster.connect_ray(ray_address, workers)
         disconnect = ray.shutdown if connected else None
     try:
         return _execute(sweep, runs, Path(out), backend, workers, shared_folder, max_retries,
@@ -166,7 +166,7 @@ def _execute(sweep, runs, root, backend, workers, shared_folder, max_retries, re
                 backends.run_pool(sweep, todo, root, on_done, on_crash,
                                   workers=workers or default_workers(), max_retries=max_retries)
             else:
-                backends.run_ray(sweep, todo, root, on_done, on_crash,
+                cluster.run_ray(sweep, todo, root, on_done, on_crash,
                                  max_retries=max_retries, shared_folder=shared_folder)
         except KeyboardInterrupt:
             result.interrupted = True
