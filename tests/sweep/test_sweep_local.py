@@ -140,12 +140,16 @@ def test_ctrl_c_sigterm_and_sigkill_mid_sweep_then_a_rerun_does_every_run_once(t
     assert {k: after[k] for k in committed} == committed   # the finished runs were not redone
 
 
-def test_cli_help_and_bad_input():
+def test_cli_help_and_bad_input(capsys):
     from pointmass.cli import main
 
     with pytest.raises(SystemExit) as exit_:
         main(["sweep", "--help"])
     assert exit_.value.code == 0
+    shown = capsys.readouterr().out
+    for option in ("--grid NAME=V1,V2,...", "--seeds", "--clip WxH", "--probes", "--ray",
+                   "--shared-folder", "--retry-failed", "pointmass sweep ball_pit -o pit"):
+        assert option in shown
     result = subprocess.run([sys.executable, "-m", "pointmass", "sweep", "ball_pit", "-o",
                              "/tmp/never-written", "--grid", "bounce=0.1,0.2"],
                             check=False, capture_output=True, text=True, timeout=120)
