@@ -7,8 +7,10 @@ cd "$(dirname "$0")/.."
 
 # --- system packages: Mesa's EGL/GL (llvmpipe), Xvfb for windows without a display --------------
 # Debian names: EGL and GLX dispatch (libegl1, libgl1), Mesa's vendor libraries and its software
-# rasterizer (libegl-mesa0, libglx-mesa0, libgl1-mesa-dri), a virtual X server (xvfb, xauth).
-packages=(libegl1 libegl-mesa0 libgl1 libglx-mesa0 libgl1-mesa-dri xvfb xauth)
+# rasterizer (libegl-mesa0, libglx-mesa0, libgl1-mesa-dri), a virtual X server (xvfb, xauth);
+# the sweep's Ray test runs its cluster in a loopback-only network namespace (unshare from
+# util-linux, ip and ss from iproute2).
+packages=(libegl1 libegl-mesa0 libgl1 libglx-mesa0 libgl1-mesa-dri xvfb xauth util-linux iproute2)
 need=()
 if command -v dpkg-query >/dev/null; then
   for p in "${packages[@]}"; do

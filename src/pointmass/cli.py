@@ -113,6 +113,9 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--overwrite", action="store_true",
                    help="replace an existing file (or add to an existing frames folder)")
     p.set_defaults(func=cmd_record)
+
+    from .sweep.command import add_sweep_parser  # the sweep's options live with the sweep
+    add_sweep_parser(sub)
     return parser
 
 
