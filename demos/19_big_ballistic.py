@@ -25,6 +25,8 @@ from pointmass.rigid.quaternion import world_inv_inertia
 from pointmass.rigid.shapes import BOX, Box, Sphere, mass_properties
 
 TITLE = "Big ballistic (rigid rounds)"
+#: Shown over the scene until the first key or click.
+HINT = "Click or press SPACE to fire at the wall | 1-4 pick the ammunition"
 GRAVITY = np.array([0.0, -10.0, 0.0])
 MUZZLE = np.array([0.0, 1.5, 0.0])
 WALL_Z = 20.0

@@ -50,6 +50,9 @@ class ViewerWindow(pyglet.window.Window):
         self.imgui_input = PygletImguiInput(self)
         self._mouse_owner: str | None = None        # "gui" or "scene" while a button is down
         self._last = None
+        #: Steps the worker was still compiling when the window closed (``show`` waits for
+        #: them before handing the simulation back; ``pointmass run`` just exits).
+        self.left_running = None
 
     # -- the frame ------------------------------------------------------------------------------
     def tick(self, real_dt: float) -> None:
@@ -59,14 +62,14 @@ class ViewerWindow(pyglet.window.Window):
         self.switch_to()
         self.on_draw()
         self.flip()
-        if self.viewer is not None:
+        if self.viewer is not None and self.viewer.compiling() is None:
             self.viewer.join_physics()
 
     def _quiet(self) -> bool:
         """Before an event touches the viewer: False when closed, else wait for the physics
         worker (no event ever races it)."""
-        if self.viewer is None:
-            return False
+        if self.viewer is None or self.viewer.compiling() is not None:
+            return False              # closed, or the worker compiles: the event is dropped
         self.viewer.join_physics()
         return True
 
@@ -88,9 +91,17 @@ class ViewerWindow(pyglet.window.Window):
 
     def run(self) -> None:
         """The event loop: physics and drawing at the display rate (~60 Hz)."""
+        if self.viewer is not None:
+            self.viewer.detach_compiles = True  # a first step's compile: notice, not freeze
+            self.viewer.start_warmup()
         pyglet.clock.schedule_interval(self._scheduled, 1 / 60)
         try:
             pyglet.app.run(1 / 60)
+        except BaseException:
+            # Ctrl-C (or an error): close without waiting for a compile in the worker.
+            if self.viewer is not None:
+                self.close()
+            raise
         finally:
             pyglet.clock.unschedule(self._scheduled)
 
@@ -156,6 +167,10 @@ class ViewerWindow(pyglet.window.Window):
 
     # -- keys -----------------------------------------------------------------------------------
     def on_key_press(self, symbol, modifiers):
+        if symbol == key.ESCAPE and self.viewer is not None \
+                and self.viewer.compiling() is not None:
+            self.close()              # Escape closes even while the first step compiles
+            return pyglet.event.EVENT_HANDLED
         if not self._quiet():
             return pyglet.event.EVENT_HANDLED
         self.imgui_input.key_event(symbol, True)
@@ -190,5 +205,9 @@ class ViewerWindow(pyglet.window.Window):
         if self.viewer is not None:
             self.switch_to()
             viewer, self.viewer = self.viewer, None
-            viewer.close()
+            if viewer.compiling() is not None:   # do not hold the window for the compile
+                self.left_running = viewer._running
+                viewer.close(wait=False)
+            else:
+                viewer.close()
         super().close()

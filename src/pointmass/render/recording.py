@@ -18,6 +18,7 @@ from collections.abc import Callable
 from dataclasses import dataclass
 from pathlib import Path
 
+from .. import worker
 from .camera import OrbitCamera
 from .context import create_headless_context
 from .progress import ProgressBar
@@ -145,7 +146,8 @@ def record(simulation, path: str | Path | VideoWriter, *, seconds: float, fps: i
                 on_frame(index)
             if bar is not None:
                 bar.update(done)
-            simulation.advance(1.0 / fps)
+            # In the physics worker: a first step's compile leaves Ctrl-C prompt (see worker).
+            worker.call(simulation.advance, 1.0 / fps)
     finally:
         # Whatever happened, encode what is queued and close the file so it plays.
         if encoder.is_alive():
