@@ -39,6 +39,7 @@ class FrameState:
             manifolds' points, normals and outlines), caller lines.
         boxes, planes: Copies of the scene's boxes and planes.
         show_ground, ground_height, sky: The scene's backdrop.
+        shadow_height: Where the blob shadows fall [m] (the scene's, or its ground).
     """
 
     time: float
@@ -52,6 +53,7 @@ class FrameState:
     show_ground: bool
     ground_height: float
     sky: object
+    shadow_height: float = 0.0
 
     @classmethod
     def capture(cls, scene: Scene, *, trails=None, show_contacts: bool = False,
@@ -103,7 +105,9 @@ class FrameState:
                    boxes=tuple(_copy_box(b) for b in boxes),
                    planes=tuple(_copy_plane(p) for p in scene.planes),
                    show_ground=bool(scene.show_ground),
-                   ground_height=float(scene.ground_height), sky=scene.sky)
+                   ground_height=float(scene.ground_height), sky=scene.sky,
+                   shadow_height=float(scene.ground_height if scene.shadow_height is None
+                                       else scene.shadow_height))
 
 
 def _joined(parts: list[np.ndarray]) -> np.ndarray:

@@ -232,7 +232,7 @@ class Renderer:
             so = self.programs["shadow_overlay"]
             so["u_view_proj"].write(vp.tobytes())
             so["u_shadow_region"].value = self._shadows.region
-            so["u_ground"].value = float(scene.ground_height)
+            so["u_ground"].value = float(scene.shadow_height)
             so["u_shadow"].value = 0
             so["u_uv_scale"].value = self._shadows.used / self._shadows.texture.width
             self._shadows.texture.use(0)
