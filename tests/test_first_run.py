@@ -236,3 +236,19 @@ def test_the_notebook_line(tmp_path):
     out = subprocess.run([sys.executable, "-c", code], env=_env(), capture_output=True,
                          text=True, timeout=120, check=True).stdout
     assert f"pointmass: {compiling.NOTICE}" in out
+
+
+def test_warmup_steps_the_named_demos_and_says_where_the_cache_is(capsys):
+    from pointmass.cli import main
+
+    assert main(["warmup", "projectile", "box_tower"]) == 0
+    err = capsys.readouterr().err
+    assert "warmup [1/2] projectile:" in err and "warmup [2/2] box_tower:" in err
+    assert "cached in" in err
+
+
+def test_warmup_of_an_unknown_demo_is_a_usage_error(capsys):
+    from pointmass.cli import main
+
+    assert main(["warmup", "bal_pit"]) == 2
+    assert "did you mean 'ball_pit'" in capsys.readouterr().err
