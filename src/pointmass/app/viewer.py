@@ -305,8 +305,8 @@ class Viewer:
         if not lines:
             return
         io = imgui.get_io()
-        view_w = io.display_size.x - self.view_x / max(self.pixel_ratio, 1e-9)
-        x = self.view_x / max(self.pixel_ratio, 1e-9) + view_w / 2
+        left = self.view_x / max(self.pixel_ratio, 1e-9)     # the 3D view's left edge [points]
+        x = (left + io.display_size.x) / 2
         imgui.set_next_window_pos(imgui.ImVec2(x, io.display_size.y - 24), imgui.Cond_.always,
                                   imgui.ImVec2(0.5, 1.0))
         imgui.set_next_window_bg_alpha(0.6)
@@ -323,7 +323,9 @@ class Viewer:
         panel is left out: it reads the simulation, which the worker is stepping."""
         imgui.new_frame()
         io = imgui.get_io()
-        imgui.set_next_window_pos(imgui.ImVec2(io.display_size.x / 2, io.display_size.y / 2),
+        left = self.view_x / max(self.pixel_ratio, 1e-9)     # the 3D view's left edge [points]
+        imgui.set_next_window_pos(imgui.ImVec2((left + io.display_size.x) / 2,
+                                               io.display_size.y / 2),
                                   imgui.Cond_.always, imgui.ImVec2(0.5, 0.5))
         flags = (imgui.WindowFlags_.no_decoration | imgui.WindowFlags_.always_auto_resize
                  | imgui.WindowFlags_.no_inputs | imgui.WindowFlags_.no_saved_settings)

@@ -25,6 +25,8 @@ from .keymap import key_name
 from .viewer import Viewer
 
 _BUTTONS = {mouse.LEFT: "left", mouse.RIGHT: "right", mouse.MIDDLE: "middle"}
+#: Seconds the event loop rests each frame while numba compiles in the physics worker.
+COMPILING_FRAME_PAUSE = 0.1
 
 
 class ViewerWindow(pyglet.window.Window):
@@ -87,6 +89,11 @@ class ViewerWindow(pyglet.window.Window):
         real_dt = now - self._last if self._last is not None else 0.0
         self._last = now
         if self.viewer is not None:
+            if self.viewer.compiling() is not None:
+                # ~10 notice frames a second, not 60: the compile in the worker is Python
+                # holding the GIL, and every frame drawn here takes it away (a sleep frees it;
+                # a signal still interrupts it at once).
+                time.sleep(COMPILING_FRAME_PAUSE)
             self.viewer.update(real_dt)  # pyglet.app then calls on_draw and flips
 
     def run(self) -> None:
