@@ -75,3 +75,36 @@ def test_the_window_draws_a_notice_while_the_worker_compiles(open_viewer, sim, m
     viewer.detach_compiles = False
     frames(w, 2)
     assert viewer.compiling() is None and not viewer.physics_running
+
+
+def test_the_first_job_never_holds_the_window(open_viewer, sim):
+    """numba's start-up and its cache loads run outside its compile events: while the first
+    job (the drawing's kernels) runs, the window draws "Loading physics kernels" instead of
+    waiting for it (it once froze for seconds there)."""
+    import time
+
+    from pointmass.worker import Worker
+
+    w = open_viewer(sim, paused=False)
+    viewer = w.viewer
+    frames(w, 2)
+    viewer.detach_compiles = True
+    viewer.update(DT)                 # steps owed (run by the next draw, with overlap)
+    release = threading.Event()
+    viewer._worker = viewer._worker or Worker()
+    viewer._warming_since = time.perf_counter()
+    viewer._warming = viewer._worker.submit(release.wait, 30)
+    started = time.perf_counter()
+    assert viewer.compiling() is not None and viewer.notice_kind == "loading"
+    w.switch_to()
+    w.on_draw()
+    assert time.perf_counter() - started < 5.0       # did not wait for the 30 s job
+    assert viewer.last_notice == "Loading physics kernels ..."
+    # ...and a notice frame drops them: the next update must not run them in the main thread
+    # (where a compile froze the window)
+    assert viewer._due is None
+    release.set()
+    viewer._warming.result(30)
+    assert viewer.compiling() is None and viewer._warming is None
+    viewer.detach_compiles = False
+    frames(w, 2)

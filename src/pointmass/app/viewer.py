@@ -108,6 +108,9 @@ class Viewer:
         self.detach_compiles = False
         #: The job compiling the kernels the drawing calls (``start_warmup``), until done.
         self._warming: Future | None = None
+        self._warming_since = 0.0
+        #: What the worker is doing while the notice shows: "compiling" or "loading".
+        self.notice_kind = "compiling"
         #: When the compile notice first showed (perf_counter seconds), while it shows.
         self._notice_since: float | None = None
         #: The compile notice as last drawn (tests read it).
@@ -218,19 +221,29 @@ class Viewer:
 
     def compiling(self) -> float | None:
         """Seconds numba has been compiling for the worker, when the window shows a notice
-        instead of waiting for it (``detach_compiles``); else None. Waits for the worker's job
-        while no compile runs (the usual few milliseconds of a frame's steps)."""
+        instead of waiting for it (``detach_compiles``); else None. Waits for a frame's steps
+        while no compile runs (the usual few milliseconds); never for the first job
+        (``start_warmup``): numba's own start-up and its cache loads run outside its compile
+        events, and waiting through them froze the window for seconds ("loading" then)."""
+        self.notice_kind = "compiling"
         if not self.detach_compiles:
             return None
-        for job in (self._warming, self._running):
-            while job is not None and not job.done():
-                seconds = compiling.elapsed()
-                if seconds is not None:
-                    return seconds
-                wait_futures([job], timeout=0.02)
-        if self._warming is not None:
-            self._warming.result()          # an error in it is raised here
+        warming = self._warming
+        if warming is not None and not warming.done():
+            seconds = compiling.elapsed()
+            if seconds is None:
+                self.notice_kind = "loading"
+                return time.perf_counter() - self._warming_since
+            return seconds
+        running = self._running
+        while running is not None and not running.done():
+            seconds = compiling.elapsed()
+            if seconds is not None:
+                return seconds
+            wait_futures([running], timeout=0.02)
+        if warming is not None:
             self._warming = None
+            warming.result()                # an error in it is raised here
         return None
 
     def start_warmup(self) -> None:
@@ -239,6 +252,7 @@ class Viewer:
         freezing, and a signal is handled at once (it waits while the main thread compiles)."""
         if self._worker is None:
             self._worker = Worker("pointmass-physics")
+        self._warming_since = time.perf_counter()
         self._warming = self._worker.submit(warm_drawing, self.sim)
 
     def _watch(self) -> None:
@@ -262,6 +276,10 @@ class Viewer:
         slider or Reset changes it)."""
         seconds = self.compiling()
         if seconds is not None:
+            # The steps this frame's update owed are dropped, not left for the next update,
+            # which would run them in line, here in the main thread: a compile there froze
+            # the window (and held off signals) until it ended.
+            self._due = None
             self._draw_compiling(screen, seconds)
             return
         self._notice_since = None
@@ -334,7 +352,8 @@ class Viewer:
         if self._notice_since is None:
             self._notice_since = time.perf_counter() - seconds
         shown = time.perf_counter() - self._notice_since
-        self.last_notice = compiling.notice(shown, ellipsis="...").capitalize()
+        self.last_notice = compiling.notice(shown, ellipsis="...").capitalize() \
+            if self.notice_kind == "compiling" else "Loading physics kernels ..."
         imgui.text(self.last_notice)
         imgui.text_disabled("numba turns the physics into machine code once; later runs load "
                             "it from the cache.")
