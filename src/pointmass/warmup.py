@@ -41,14 +41,10 @@ def warm_demo(name: str) -> int:
 def warm_render() -> None:
     """The renderer's CPU kernels (the blob-shadow splat), when the render extra is there."""
     try:
-        import numpy as np
-
-        from .render.shadow_splat import shadow_map, shadow_region
+        from .render import shadow_splat
     except ImportError:
         return
-    spheres = np.array([[0.0, 0.5, 0.0, 0.5]], np.float32)
-    region = shadow_region(spheres, 0.0, 64)
-    shadow_map(spheres, region, 0.0, 0.5, 64)
+    shadow_splat.warm()
 
 
 def warm(names: list[str] | None = None, *, stream=None) -> float:

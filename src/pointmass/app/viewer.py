@@ -519,10 +519,9 @@ def warm_drawing(sim) -> None:
     world = sim.scene.world
     world.kinetic_energy()
     world.potential_energy()
-    from ..render.shadow_splat import shadow_map, shadow_region
+    from ..render import shadow_splat
 
-    casters = np.array([[0.0, 0.5, 0.0, 0.5]], np.float32)   # the renderer's row type
-    shadow_map(casters, shadow_region(casters, 0.0, 64), 0.0, 0.5, 64)
+    shadow_splat.warm()
 
 
 def overlap_default() -> bool:

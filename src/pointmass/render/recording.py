@@ -19,6 +19,7 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from .. import worker
+from . import shadow_splat
 from .camera import OrbitCamera
 from .context import create_headless_context
 from .progress import ProgressBar
@@ -135,6 +136,7 @@ def record(simulation, path: str | Path | VideoWriter, *, seconds: float, fps: i
         else:
             renderer.resize(writer.size)
         camera = OrbitCamera.from_hint(simulation.scene.camera)
+        worker.call(shadow_splat.warm)      # not in the main thread (see shadow_splat.warm)
         encoder.start()
         for index in range(total):
             camera.track(simulation.scene)

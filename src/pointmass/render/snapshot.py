@@ -8,6 +8,7 @@ from pathlib import Path
 import numpy as np
 
 from .. import worker
+from . import shadow_splat
 from .camera import OrbitCamera
 from .context import create_headless_context
 from .renderer import Renderer
@@ -50,6 +51,7 @@ def render_frame(simulation, size: tuple[int, int] = (1280, 720), *, time: float
     if time > 0:
         # In the physics worker: a first step's compile leaves Ctrl-C prompt (see worker).
         worker.call(simulation.advance, time)
+    worker.call(shadow_splat.warm)          # the renderer's kernels too, not in this thread
     ctx = create_headless_context()
     try:
         renderer = Renderer(ctx, size)
