@@ -20,6 +20,8 @@ import numpy as np
 from pointmass import BoxVisual, CameraHint, ForceGenerator, Scene, World, choice, tweak
 
 TITLE = "Ballistic"
+#: Shown over the scene until the first key or click.
+HINT = "Click or press SPACE to fire | 1-4 pick the ammunition"
 POOL = 16
 MUZZLE = np.array([0.0, 1.5, 0.0])
 #: name: (mass [kg], velocity [m/s], gravity [m/s²], damping, color, drawn radius [m])

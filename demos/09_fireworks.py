@@ -24,6 +24,8 @@ import numpy as np
 from pointmass import CameraHint, Scene, World, tweak
 
 TITLE = "Fireworks"
+#: Shown over the scene until the first key or click.
+HINT = "Press 1-9 to launch a firework of that type"
 POOL = 1024
 #: type: (age range [s], velocity min, velocity max [m/s], damping, payloads [(type, count)])
 RULES = {

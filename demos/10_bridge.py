@@ -30,6 +30,8 @@ from pointmass import (
 from pointmass.controls import walk, wasd_keys
 
 TITLE = "Rope bridge"
+#: Shown over the scene until the first key or click.
+HINT = "Hold A/D to walk the load along the bridge, W/S to move it across"
 G = 9.81
 
 

@@ -22,6 +22,8 @@ from pointmass import BoxVisual, CameraHint, Ground, Rod, Scene, World, tweak
 from pointmass.controls import walk, wasd_keys
 
 TITLE = "Platform (see-saw truss)"
+#: Shown over the scene until the first key or click.
+HINT = "Hold A/D to move the load along the deck, W/S to move it across"
 G = 9.81
 X_LEFT, X_RIGHT = -3.0, 4.0
 CORNERS = np.array([2, 3, 4, 5])  # left-front, left-back, right-front, right-back

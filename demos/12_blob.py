@@ -18,6 +18,8 @@ import numpy as np
 from pointmass import BoxVisual, CameraHint, ContactGenerator, ForceGenerator, Scene, World, tweak
 
 TITLE = "Blob"
+#: Shown over the scene until the first key or click.
+HINT = "Hold W/A/S/D to push the blob | R puts it back"
 COUNT, RADIUS = 5, 0.4
 PUSH = {"W": (0.0, 1.0), "S": (0.0, -1.0), "A": (-1.0, 0.0), "D": (1.0, 0.0)}
 

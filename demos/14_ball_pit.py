@@ -21,6 +21,8 @@ import numpy as np
 from pointmass import BoxContainer, BoxVisual, CameraHint, Scene, SphereCollisions, World, tweak
 
 TITLE = "Ball pit"
+#: Shown over the scene until the first key or click.
+HINT = "Press SPACE to stir the pit"
 RADIUS = 0.1
 
 

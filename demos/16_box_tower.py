@@ -18,6 +18,8 @@ from pointmass import CameraHint, Ground, Scene, World, tweak
 from pointmass.rigid.shapes import Box, Sphere
 
 TITLE = "Box tower (rigid bodies)"
+#: Shown over the scene until the first key or click.
+HINT = "Click or press SPACE to throw a ball at the tower"
 HALF = 0.5
 
 

@@ -17,6 +17,8 @@ from pointmass import CameraHint, Ground, Scene, World, tweak
 from pointmass.rigid.shapes import Box, Sphere
 
 TITLE = "Box pyramid (rigid bodies)"
+#: Shown over the scene until the first key or click.
+HINT = "Click or press SPACE to throw a ball at the wall"
 HALF = 0.5
 GAP = 0.02
 

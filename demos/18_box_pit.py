@@ -15,7 +15,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from pointmass import BoxVisual, CameraHint, Plane, Scene, World, tweak
-from pointmass.rigid.quaternion import quat_from_axis_angle
+from pointmass.rigid.quaternion import quat_from_axis_angle_numpy
 from pointmass.rigid.shapes import Box
 
 TITLE = "Box pit (rigid bodies)"
@@ -45,7 +45,7 @@ def build(p: Params) -> Scene:
     positions += rng.uniform(-0.05, 0.05, positions.shape)
     for pos in positions:
         axis = rng.normal(size=3)
-        q = quat_from_axis_angle(axis / np.linalg.norm(axis), rng.uniform(0, math.pi))
+        q = quat_from_axis_angle_numpy(axis / np.linalg.norm(axis), rng.uniform(0, math.pi))
         world.add_body(Box((HALF, HALF, HALF)), pos, q, mass=1.0, friction=p.friction)
     bodies = world.bodies
     # The walls are planes (no thickness): drawn as outlines about as tall as the heap.

@@ -21,10 +21,12 @@ import numpy as np
 from pointmass import CameraHint, Ground, Scene, World, choice, tweak
 from pointmass.rigid.bodies import inverse_inertia
 from pointmass.rigid.forces import BodyForceGenerator
-from pointmass.rigid.quaternion import world_inv_inertia
+from pointmass.rigid.quaternion import world_inv_inertia_numpy
 from pointmass.rigid.shapes import BOX, Box, Sphere, mass_properties
 
 TITLE = "Big ballistic (rigid rounds)"
+#: Shown over the scene until the first key or click.
+HINT = "Click or press SPACE to fire at the wall | 1-4 pick the ammunition"
 GRAVITY = np.array([0.0, -10.0, 0.0])
 MUZZLE = np.array([0.0, 1.5, 0.0])
 WALL_Z = 20.0
@@ -109,7 +111,7 @@ def fire(scene: Scene, p: Params) -> None:
     b.angular_velocity[i] = 0.0
     b.inv_mass[i] = 1.0 / mass
     b.inv_inertia[i] = inverse_inertia(moments)
-    b.inv_inertia_world[i] = world_inv_inertia(b.orientation[i], b.inv_inertia[i])
+    b.inv_inertia_world[i] = world_inv_inertia_numpy(b.orientation[i], b.inv_inertia[i])
     b.size[i] = (radius, 0.0, 0.0)
     b.linear_damping[i] = damping
     b.wake(i)  # written in place above, which does not wake a sleeping round

@@ -4,7 +4,9 @@ empty).
 Boxes and spheres dropped in a ring on the ground; an ``Explosion`` at the centre throws them
 outward and up: each body within its radius gets the impulse strength·(1 − d/radius) over
 0.05 s, d the distance from the blast to its nearest point, pushed at that point so boxes
-tumble. It goes off by itself after ``auto_time`` seconds, and on SPACE or a click.
+tumble. It goes off by itself after ``auto_time`` seconds, and on SPACE or a click; ``again``
+seconds after a blast the ring is put back and it goes off again, so the show never ends
+before anyone is watching (a window that takes a while to open, a late look).
 
 Keys: SPACE / click detonate.   Run: pointmass run explosion --set strength=100
 """
@@ -20,6 +22,8 @@ from pointmass.rigid.forces import Explosion
 from pointmass.rigid.shapes import Box, Sphere
 
 TITLE = "Explosion (rigid bodies)"
+#: Shown over the scene until the first key or click.
+HINT = "Click or press SPACE to set off the blast (it also goes off by itself)"
 #: Just under the ground, so the blast throws things up as well as out.
 CENTRE = np.array([0.0, -1.0, 0.0])
 
@@ -32,6 +36,8 @@ class Params:
     strength: float = tweak(50.0, 0.0, 300.0, "Impulse at the centre [N·s]")
     reach: float = tweak(6.0, 1.0, 12.0, "Radius the blast reaches [m]")
     auto_time: float = tweak(1.5, 0.0, 10.0, "Goes off by itself at … [s] (0: only by key)")
+    again: float = tweak(6.0, 0.0, 30.0, "Ring put back and set off again … s after a blast "
+                         "(0: once)")
 
 
 def build(p: Params) -> Scene:
@@ -56,7 +62,9 @@ def build(p: Params) -> Scene:
                                           pitch=22.0),
                  dt=1.0 / 60.0,
                  handles={"params": p, "bodies": bodies, "blast": None, "before": None,
-                          "at": None})
+                          "at": None, "armed": 0.0,
+                          "start": (world.bodies.snapshot(), world.body_impulses.snapshot(),
+                                    world.sleeping_impulses.snapshot())})
 
 
 def apply(scene: Scene, p: Params) -> None:
@@ -74,11 +82,26 @@ def detonate(scene: Scene, p: Params) -> None:
     h["at"] = scene.time
 
 
+def rearm(scene: Scene) -> None:
+    """Put the ring back as it was built (the blast spent); it goes off ``auto_time`` later."""
+    h = scene.handles
+    world = scene.world
+    bodies, impulses, sleeping = h["start"]
+    world.bodies.restore(bodies)
+    world.body_impulses.restore(impulses)
+    world.sleeping_impulses.restore(sleeping)
+    if h["blast"] is not None:
+        world.remove(h["blast"])
+    h["blast"], h["before"], h["at"], h["armed"] = None, None, None, scene.time
+
+
 def on_step(scene: Scene, dt: float) -> None:
     h = scene.handles
     p = h["params"]
-    if h["at"] is None and p.auto_time > 0 and scene.time >= p.auto_time:
+    if h["at"] is None and p.auto_time > 0 and scene.time >= h["armed"] + p.auto_time:
         detonate(scene, p)
+    elif h["at"] is not None and p.again > 0 and scene.time >= h["at"] + p.again:
+        rearm(scene)
 
 
 KEYS = {"SPACE": ("Detonate at the centre", detonate), "CLICK": ("Detonate", detonate)}

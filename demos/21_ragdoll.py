@@ -28,6 +28,8 @@ from pointmass.rigid.joints import BallJoint, HingeJoint
 from pointmass.rigid.shapes import Box
 
 TITLE = "Ragdoll (joints with limits)"
+#: Shown over the scene until the first key or click.
+HINT = "Press SPACE to push the ragdoll again"
 #: name: (centre [m], half extents [m]) standing, facing +x, left side at +z.
 BONES = {
     "shin_r": ((0.0, 0.27, -0.1), (0.06, 0.22, 0.06)),

@@ -24,6 +24,8 @@ from pointmass.rigid.joints import BallJoint
 from pointmass.rigid.shapes import Box
 
 TITLE = "Spinning top (ball joint, precession)"
+#: Shown over the scene until the first key or click.
+HINT = "Press SPACE to nudge the top"
 G = 9.81
 HALF = (0.3, 0.03, 0.3)  # the plate's half extents [m]; its axis is the local y axis
 TIP = np.array([0.0, 1.0, 0.0])  # the top of the post [m]

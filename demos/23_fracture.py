@@ -26,6 +26,8 @@ from pointmass.rigid.bodies import world_rotation
 from pointmass.rigid.shapes import BOX, Box, Sphere
 
 TITLE = "Fracture (a block breaks on impact)"
+#: Shown over the scene until the first key or click.
+HINT = "Click or press SPACE to throw a ball at the block"
 HALF = 4.0
 BLOCK_MASS = 100.0
 BALL_RADIUS = 0.25

@@ -28,6 +28,8 @@ from pointmass.rigid.forces import Aero, AeroControl, BodyForceGenerator
 from pointmass.rigid.shapes import Box, compound_boxes
 
 TITLE = "Flight simulator (aero surfaces)"
+#: Shown over the scene until the first key or click.
+HINT = "Hold W/S to pitch, A/D to roll, Q/E for the rudder | X centres the controls"
 MASS = 2.5
 THRUST = 10.0
 #: The drawing, in body coordinates (forward is −x, up +y): (centre [m], full sides [m]).

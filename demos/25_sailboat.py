@@ -30,6 +30,8 @@ from pointmass.rigid.forces import Aero, AeroControl, BodyBuoyancy, BodyForce
 from pointmass.rigid.shapes import compound_boxes
 
 TITLE = "Sailboat (buoyancy and sail)"
+#: Shown over the scene until the first key or click.
+HINT = "Hold Q/E to turn the sail, A/D for the rudder | W centres both"
 MASS = 200.0
 WATER_DENSITY = 1000.0
 G = 9.81
@@ -123,7 +125,8 @@ def build(p: Params) -> Scene:
                         color=(0.2, 0.45, 0.85, 0.45))
     scene = Scene(world, camera=CameraHint(target=(0.0, 0.5, 0.0), distance=11.0, yaw=-35.0,
                                            pitch=20.0, follow_body=boat),
-                  boxes=visuals, planes=[water], ground_height=-3.0, dt=1.0 / 120.0,
+                  boxes=visuals, planes=[water], ground_height=-3.0,
+                  shadow_height=0.0, dt=1.0 / 120.0,
                   handles={"boat": world.bodies[boat], "sail": sail, "rudder": rudder,
                            "sail_control": 1.0, "offset": offset, "params": p,
                            "rng": np.random.default_rng(p.seed), "mean_wind": wind.copy(),

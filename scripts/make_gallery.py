@@ -1,6 +1,6 @@
 """Make the README's demo gallery: a thumbnail per demo, made with `pointmass render`/`record`.
 
-    .venv/bin/python scripts/make_gallery.py [--only NAME ...]
+    .venv/bin/python scripts/make_gallery.py [--only NAME ...] [--table-only]
 
 Writes docs/gallery/NAME.png (or .gif for demos listed in ANIMATED) and rewrites the table
 between the gallery markers in README.md. Runs headless (EGL).
@@ -58,9 +58,12 @@ def gallery_table(thumbs: dict[str, Path]) -> str:
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--only", nargs="*", help="demo names to redo (default: all)")
+    parser.add_argument("--table-only", action="store_true",
+                        help="rewrite the README table (titles, descriptions) with the "
+                             "thumbnails already made, rendering nothing")
     args = parser.parse_args()
     OUT.mkdir(parents=True, exist_ok=True)
-    names = args.only or [d.name for d in list_demos()]
+    names = [] if args.table_only else args.only or [d.name for d in list_demos()]
     thumbs = {name: make_thumbnail(name) for name in names}
     readme = ROOT / "README.md"
     text = readme.read_text()

@@ -44,3 +44,11 @@ if [ ! -x .venv/bin/python ]; then
 fi
 .venv/bin/python -m pip install -q --upgrade pip
 .venv/bin/python -m pip install -q -e ".[${EXTRAS:-all}]"
+
+# --- numba's kernels, compiled once into the per-user cache (~/.cache/pointmass/numba) --------
+# The demos' first steps would otherwise compile them in the window (about a minute on two
+# cores); later runs load them in about a second. POINTMASS_SKIP_WARMUP=1 skips it.
+if [ "${POINTMASS_SKIP_WARMUP:-0}" != "1" ]; then
+  echo "setup: compiling the physics kernels the demos use (once; a few minutes on 2 cores)"
+  .venv/bin/pointmass warmup
+fi

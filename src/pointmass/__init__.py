@@ -23,8 +23,12 @@ import os as _os
 # waiting (2 cores, load average 4.3, same run). A user's own setting is kept.
 _os.environ.setdefault("OMP_WAIT_POLICY", "PASSIVE")
 
+# First, before numba loads: importing numba_cache points numba's cache at a per-user folder,
+# so kernels compile once (see numba_cache).
+from . import numba_cache as _numba_cache  # noqa: F401  (imported for that effect)
 from . import probes, stability
 from .collide import BoxContainer, Ground, Plane, SphereCollisions
+from .compiling import install as _watch_compiles
 from .contacts import ContactBuffer, ContactGenerator
 from .forces import Buoyancy, CustomForce, Drag, ForceGenerator, Gravity
 from .links import AnchoredCable, AnchoredRod, Cable, Rod
@@ -49,6 +53,10 @@ from .simulation import Simulation
 from .springs import AnchoredBungee, AnchoredSpring, Bungee, FakeSpring, Spring
 from .stability import UnstableStepError
 from .world import StepStats, World
+
+# Count numba compiles from the start: a notebook prints a line when one begins, and the
+# window, `record` and `render` say "compiling physics kernels (first run only)" while it lasts.
+_watch_compiles()
 
 __version__ = "0.1.0"
 

@@ -79,6 +79,11 @@ def build_parser() -> argparse.ArgumentParser:
     p = sub.add_parser("list", help="list the demos")
     p.set_defaults(func=cmd_list)
 
+    p = sub.add_parser("warmup", help="compile the physics kernels the demos use, once (later "
+                                      "runs load them from the cache)")
+    p.add_argument("demos", nargs="*", metavar="DEMO", help="only these demos (default: all)")
+    p.set_defaults(func=cmd_warmup)
+
     def demo_args(p: argparse.ArgumentParser) -> None:
         p.add_argument("demo", help="demo name (see `pointmass list`) or path to a demo file")
         p.add_argument("--set", dest="overrides", action="append", default=[],
@@ -120,13 +125,28 @@ def build_parser() -> argparse.ArgumentParser:
 
 
 def _simulation(args):
-    """Load the demo and apply ``--set``; bad names and values become UsageError."""
+    """Load the demo and apply ``--set``; bad names and values become UsageError. Built in the
+    physics worker (a build may compile kernels; Ctrl-C stays prompt, see ``worker``)."""
+    from . import worker
     from .simulation import Simulation
 
     try:
-        return Simulation(args.demo, overrides=args.overrides)
+        return worker.call(Simulation, args.demo, overrides=args.overrides)
     except ValueError as exc:
         raise UsageError(str(exc)) from None
+
+
+def cmd_warmup(args) -> int:
+    from .demo import load_demo
+    from .warmup import warm
+
+    for name in args.demos:
+        try:
+            load_demo(name)
+        except ValueError as exc:
+            raise UsageError(str(exc)) from None
+    warm(args.demos or None)
+    return 0
 
 
 def cmd_list(args) -> int:
@@ -255,11 +275,34 @@ def _checked_output(path: str, check) -> Path:
         raise UsageError(str(exc)) from None
 
 
+#: Subcommands that step physics: they say so on stderr while numba compiles.
+_COMPILING_COMMANDS = ("run", "render", "record", "warmup")
+
+
 def main(argv: list[str] | None = None) -> int:
     """Run the command line; returns the exit status."""
     args = build_parser().parse_args(argv)
     _handle_termination()
+    status = _dispatch(args)
+    from . import worker
+
+    if worker.busy():
+        # Interrupted while the physics worker still compiles or steps: nothing of it is
+        # wanted, and interpreter shutdown could wait on it. Leave now (files are closed).
+        sys.stdout.flush()
+        sys.stderr.flush()
+        os._exit(status)
+    return status
+
+
+def _dispatch(args) -> int:
+    from .compiling import TerminalNotice
+
+    notice = TerminalNotice() if args.command in _COMPILING_COMMANDS else None
     try:
+        if notice is not None:
+            with notice:
+                return args.func(args)
         return args.func(args)
     except UsageError as exc:
         print(f"pointmass: error: {exc}", file=sys.stderr)

@@ -14,10 +14,14 @@ A demo is a Python file in ``demos/`` (import-safe: no side effects at import) w
 - ``check(scene)``: an oracle the tests run after a few simulated seconds (optional);
 - ``KEYS``: ``{"1": ("Pistol", fn(scene, params)), ...}`` key bindings (optional). Key names
   are pyglet-style symbol names ("1", "W", "SPACE", "ENTER") or "CLICK" for a click in the scene.
+- ``HINT``: one short line the window shows over the scene until the first demo key or click,
+  saying what to do ("Click or press SPACE to fire"); a demo that waits for input needs one
+  (optional otherwise).
 """
 
 from __future__ import annotations
 
+import difflib
 import importlib.util
 import re
 import sys
@@ -71,9 +75,10 @@ class Demo:
 
     @property
     def description(self) -> str:
-        """The first line of the demo's docstring."""
-        doc = (self.module.__doc__ or "").strip()
-        return doc.splitlines()[0] if doc else self.title
+        """The first paragraph of the demo's docstring, as one line of plain text (wrapped
+        lines joined, reStructuredText ````code```` marks dropped), for ``pointmass list``, the
+        panel and the README gallery."""
+        return summary(self.module.__doc__) or self.title
 
     @property
     def params_class(self) -> type | None:
@@ -90,11 +95,33 @@ class Demo:
         return scene
 
     @property
+    def hint(self) -> str | None:
+        """The demo's ``HINT``: what to do, shown over the scene until the first key or click."""
+        return getattr(self.module, "HINT", None)
+
+    @property
     def keys(self) -> dict[str, tuple[str, Callable]]:
         return dict(getattr(self.module, "KEYS", {}))
 
     def hook(self, name: str) -> Callable | None:
         return getattr(self.module, name, None)
+
+
+def summary(doc: str | None) -> str:
+    """A docstring's first paragraph on one line, without ````literal```` marks."""
+    first = (doc or "").strip().split("\n\n")[0]
+    return re.sub(r"``([^`]+)``", r"\1", " ".join(first.split()))
+
+
+def unknown_demo_message(wanted: str) -> str:
+    """``unknown demo 'bal_pit'; did you mean 'ball_pit'?`` (difflib's close matches), then
+    the known names."""
+    names = [demo_name(p) for p in demo_paths()]
+    close = difflib.get_close_matches(wanted, names, n=3, cutoff=0.6)
+    hint = ""
+    if close:
+        hint = " did you mean " + " or ".join(repr(c) for c in close) + "?"
+    return f"unknown demo {wanted!r};{hint} known demos: {', '.join(names)}"
 
 
 def load_demo(name_or_path: str | Path) -> Demo:
@@ -106,8 +133,7 @@ def load_demo(name_or_path: str | Path) -> Demo:
         if not matches:
             if path.suffix == ".py" or "/" in wanted or "\\" in wanted:
                 raise ValueError(f"no such file: {wanted}")
-            known = ", ".join(demo_name(p) for p in demo_paths())
-            raise ValueError(f"unknown demo {wanted!r}; known demos: {known}")
+            raise ValueError(unknown_demo_message(wanted))
         path = matches[0]
     module_name = f"pointmass_demo_{demo_name(path)}"
     spec = importlib.util.spec_from_file_location(module_name, path)

@@ -111,6 +111,9 @@ class Scene:
         show_links: Draw springs, bungees, cables and rods as lines.
         show_ground: Draw a ground grid at ``ground_height``.
         ground_height: Height of the ground grid [m].
+        shadow_height: Height of the surface the blob shadows fall on [m]; None (the default):
+            the ground. A scene whose things float on water above its ground (the sailboat)
+            puts them on the water, so each shadow lies under what casts it in every view.
         point_radius: Drawn radius [m] of particles whose collision radius is 0.
         trails: Particle indices whose recent path is drawn.
         trail_length: How many past positions a trail keeps.
@@ -130,6 +133,7 @@ class Scene:
     show_links: bool = True
     show_ground: bool = True
     ground_height: float = 0.0
+    shadow_height: float | None = None
     point_radius: float = 0.1
     trails: list[int] = field(default_factory=list)
     trail_length: int = 240

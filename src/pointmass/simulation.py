@@ -84,6 +84,8 @@ class Simulation:
         self.last_stats: StepStats | None = None
         #: Simulated seconds given up because ``advance`` hit its step or time cap [s].
         self.dropped = 0.0
+        #: Demo keys and clicks handled so far (the window's hint shows until the first).
+        self.presses = 0
         self._owed = 0.0
         self.trails.record(self.scene)
 
@@ -198,7 +200,14 @@ class Simulation:
         if binding is None:
             return False
         binding[1](self.scene, self.params)
+        self.presses += 1
         return True
+
+    @property
+    def hint(self) -> str | None:
+        """What to do, for the window to show until the first key or click (the demo's
+        ``HINT``; None for a bare Scene)."""
+        return self.demo.hint if self.demo is not None else None
 
     def check(self) -> None:
         """Run the demo's oracle, if it has one."""

@@ -316,9 +316,11 @@ def _candidates(pos, radius, idx, count, cell_size, margin, margin_fraction, bud
                 hi[found] = max(i, j)
                 found += (ddx * ddx + ddy * ddy + ddz * ddz < reach * reach) & ss[s]
     if fast:
+        # np.int64: ``found`` starts as the constant 0, which would give _fast_pairs a second
+        # compiled copy for Literal[int](0) (see rigid.box_box.box_box_into).
         lo, hi, found = _fast_pairs(pos, radius, idx, budget, slow, cell_size, margin,
                                     margin_fraction, cells, starts, low, span, order, sj, sp,
-                                    sr, sb, ss, lo, hi, found)
+                                    sr, sb, ss, lo, hi, np.int64(found))
     # Key order: by hi, then stably by lo (two counting sorts, linear in pairs + particles).
     by_hi, _ = counting_sort(hi[:found], count)
     lo_sorted = lo[by_hi]

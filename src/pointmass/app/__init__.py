@@ -76,4 +76,7 @@ def show(scene_or_simulation, *, paused: bool = False, title: str | None = None)
     elif not isinstance(sim, Simulation):
         raise TypeError(f"show() takes a Scene, a demo name or a Simulation, got "
                         f"{type(sim).__name__}")
-    open_window(sim, title=title or sim.title, paused=paused).run()
+    window = open_window(sim, title=title or sim.title, paused=paused)
+    window.run()
+    if window.left_running is not None:  # closed while compiling: the steps finish first
+        window.left_running.result()

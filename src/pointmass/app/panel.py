@@ -21,6 +21,8 @@ PANEL_WIDTH = 360
 #: drawn to the right of it, so no part of the scene is ever under the panel.
 PANEL_SPAN = PANEL_WIDTH + 16
 RESOLVERS = ("sequential", "worst-first")
+#: The live plots' heights [points] when the window has room, and the least they shrink to.
+PLOT_HEIGHT, QUANTITY_PLOT_HEIGHT, MIN_PLOT_HEIGHT = 130.0, 140.0, 60.0
 _OPEN = imgui.TreeNodeFlags_.default_open
 
 
@@ -57,7 +59,10 @@ class Panel:
                 self._plots(host)
             if self.world_open:
                 imgui.set_next_item_open(True, imgui.Cond_.once)
-            if imgui.collapsing_header("World"):      # closed at first: less used
+            opened = imgui.collapsing_header("World")  # closed at first: less used
+            lo, hi = imgui.get_item_rect_min(), imgui.get_item_rect_max()
+            self.rects["header:World"] = (lo.x, lo.y, hi.x, hi.y)
+            if opened:
                 self._world(host)
             imgui.pop_style_color()
             imgui.pop_style_var()
@@ -195,25 +200,44 @@ class Panel:
         world = host.sim.world
         movable = bool((world.particles.inv_mass > 0).any() or (world.bodies.inv_mass > 0).any())
         # A scene of only kinematic (infinite-mass) bodies has no energy: no flat-zero plot.
-        if movable and implot.begin_plot("##energy", imgui.ImVec2(-1, 130)):
+        names = [n[5:] for n in probe.names() if n.startswith("plot:")]
+        energy_h, quantity_h = self._plot_heights(movable, len(names))
+        if movable and implot.begin_plot("##energy", imgui.ImVec2(-1, energy_h)):
             _setup_axes("t [s]", "energy [J]", t, energies.values())
             implot.setup_legend(implot.Location_.north_west)
             for name, ys in energies.items():
                 implot.plot_line(name, t, ys)
             implot.end_plot()
-        names = [n[5:] for n in probe.names() if n.startswith("plot:")]
         if not names:
             return
         series = {name: probe["plot:" + name] for name in names}
         for name, ys in series.items():      # the values now, labelled
             imgui.text(f"{name} = {ys[-1]:.4g}")
         # One plot for all of them: a quantity approaching its limit shows against it.
-        if implot.begin_plot("##quantities", imgui.ImVec2(-1, 140)):
+        if implot.begin_plot("##quantities", imgui.ImVec2(-1, quantity_h)):
             _setup_axes("t [s]", "", t, series.values())
             implot.setup_legend(implot.Location_.south_east)
             for name, ys in series.items():
                 implot.plot_line(name, t, ys)
             implot.end_plot()
+
+    @staticmethod
+    def _plot_heights(energy: bool, quantities: int) -> tuple[float, float]:
+        """Heights of the energy plot and the quantities plot: their usual 130 and 140 points,
+        shrunk (to 60 at least) so the World header below them stays in the window: with the
+        extra statistics rows of a rigid-body demo and a plot of its own, it was cut off at the
+        bottom of a 720-pixel window (box_tower, flightsim, spinning_top)."""
+        style = imgui.get_style()
+        spacing = style.item_spacing.y
+        room = imgui.get_content_region_avail().y
+        room -= imgui.get_frame_height_with_spacing() + spacing       # the World header
+        room -= quantities * imgui.get_text_line_height_with_spacing()  # "name = value" rows
+        wanted = (PLOT_HEIGHT if energy else 0.0) + (QUANTITY_PLOT_HEIGHT if quantities else 0.0)
+        plots = int(energy) + int(quantities > 0)
+        room -= plots * spacing
+        scale = 1.0 if wanted <= 0 or room >= wanted else max(room, 0.0) / wanted
+        return (max(MIN_PLOT_HEIGHT, PLOT_HEIGHT * scale),
+                max(MIN_PLOT_HEIGHT, QUANTITY_PLOT_HEIGHT * scale))
 
     def _help(self, host) -> None:
         io = imgui.get_io()

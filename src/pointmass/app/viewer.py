@@ -22,14 +22,17 @@ from __future__ import annotations
 import os
 import sys
 import time
-from concurrent.futures import Future, ThreadPoolExecutor
+from concurrent.futures import Future
+from concurrent.futures import wait as wait_futures
 from pathlib import Path
 
 import numpy as np
 from imgui_bundle import imgui, implot
 
+from .. import compiling
 from ..probes import Probe
 from ..render import OrbitCamera, Renderer
+from ..worker import Worker
 from . import glwait
 from .blit import Blitter
 from .capture import ViewRecorder, save_png, timestamped
@@ -65,8 +68,9 @@ class Viewer:
                  overlap: bool | None = None) -> None:
         self.ctx, self.sim = ctx, sim
         self.overlap = overlap_default() if overlap is None else bool(overlap)
-        #: The one worker thread, its running job, and the steps the next draw runs in it.
-        self._worker: ThreadPoolExecutor | None = None
+        #: The one worker thread (a daemon: Ctrl-C during a compile in it ends the process at
+        #: once), its running job, and the steps the next draw runs in it.
+        self._worker: Worker | None = None
         self._running: Future | None = None
         self._due: tuple[float, int, float] | None = None
         self._running_due = self._due
@@ -98,6 +102,19 @@ class Viewer:
         self.world_overrides: dict = {}
         self.probe: Probe | None = None
         self._watch()
+        #: While numba compiles in the worker, draw a notice and leave the worker be instead of
+        #: waiting for it (the window's event loop turns this on; tests that drive frames
+        #: themselves keep waiting, so each frame's steps are done when it returns).
+        self.detach_compiles = False
+        #: The job compiling the kernels the drawing calls (``start_warmup``), until done.
+        self._warming: Future | None = None
+        self._warming_since = 0.0
+        #: What the worker is doing while the notice shows: "compiling" or "loading".
+        self.notice_kind = "compiling"
+        #: When the compile notice first showed (perf_counter seconds), while it shows.
+        self._notice_since: float | None = None
+        #: The compile notice as last drawn (tests read it).
+        self.last_notice = ""
         # ImGui contexts are global: one per viewer, destroyed in close() so tests do not leak.
         self.imgui_ctx = imgui.create_context()
         self.implot_ctx = implot.create_context()
@@ -132,6 +149,8 @@ class Viewer:
         """Work out the physics steps this frame owes. In line (``overlap`` off) they run here
         and the count is returned; with overlap the following ``draw`` runs them beside the
         drawing and this returns 0 (the stats count them when they are joined)."""
+        if self.compiling() is not None:
+            return 0                     # the worker compiles: no new steps owed meanwhile
         self.join_physics()
         if self._due is not None:        # an update with no draw since: run its steps now
             self._finish(*self._due, *self._physics(*self._due[:2]))
@@ -144,6 +163,14 @@ class Viewer:
         if self.overlap:
             self._due = due
             return 0
+        if self.detach_compiles:         # in the worker, so a compile leaves the window live
+            self._due = due
+            self._start_physics()
+            if self.compiling() is not None:
+                return 0
+            running = self._running
+            self.join_physics()
+            return self.physics_steps if running is not None else 0
         steps, physics = self._physics(*due[:2])
         self._finish(*due, steps, physics)
         return steps
@@ -177,7 +204,7 @@ class Viewer:
             self._finish(*due, 0, 0.0)
             return
         if self._worker is None:
-            self._worker = ThreadPoolExecutor(1, thread_name_prefix="pointmass-physics")
+            self._worker = Worker("pointmass-physics")
         self._running, self._running_due = self._worker.submit(self._physics, *due[:2]), due
 
     def join_physics(self) -> None:
@@ -191,6 +218,42 @@ class Viewer:
     @property
     def physics_running(self) -> bool:
         return self._running is not None
+
+    def compiling(self) -> float | None:
+        """Seconds numba has been compiling for the worker, when the window shows a notice
+        instead of waiting for it (``detach_compiles``); else None. Waits for a frame's steps
+        while no compile runs (the usual few milliseconds); never for the first job
+        (``start_warmup``): numba's own start-up and its cache loads run outside its compile
+        events, and waiting through them froze the window for seconds ("loading" then)."""
+        self.notice_kind = "compiling"
+        if not self.detach_compiles:
+            return None
+        warming = self._warming
+        if warming is not None and not warming.done():
+            seconds = compiling.elapsed()
+            if seconds is None:
+                self.notice_kind = "loading"
+                return time.perf_counter() - self._warming_since
+            return seconds
+        running = self._running
+        while running is not None and not running.done():
+            seconds = compiling.elapsed()
+            if seconds is not None:
+                return seconds
+            wait_futures([running], timeout=0.02)
+        if warming is not None:
+            self._warming = None
+            warming.result()                # an error in it is raised here
+        return None
+
+    def start_warmup(self) -> None:
+        """Compile, in the worker, the kernels the main thread calls while drawing (the
+        panel's energies, the blob shadows), so the first frames show a notice instead of
+        freezing, and a signal is handled at once (it waits while the main thread compiles)."""
+        if self._worker is None:
+            self._worker = Worker("pointmass-physics")
+        self._warming_since = time.perf_counter()
+        self._warming = self._worker.submit(warm_drawing, self.sim)
 
     def _watch(self) -> None:
         """(Re)attach the live plots' probe: energies and the scene's own plot quantities."""
@@ -211,10 +274,20 @@ class Viewer:
         With overlap the frame's steps run in the worker from the capture of the scene to the
         next ``join_physics``; the panel is built before, as it reads the simulation (and a
         slider or Reset changes it)."""
+        seconds = self.compiling()
+        if seconds is not None:
+            # The steps this frame's update owed are dropped, not left for the next update,
+            # which would run them in line, here in the main thread: a compile there froze
+            # the window (and held off signals) until it ended.
+            self._due = None
+            self._draw_compiling(screen, seconds)
+            return
+        self._notice_since = None
         self.join_physics()
         t0 = time.perf_counter()
         imgui.new_frame()
         self.panel.draw(self, show_panel=self.show_panel)
+        self._draw_overlay()
         imgui.render()
         gui = time.perf_counter() - t0
         r, sim = self.renderer, self.sim
@@ -237,6 +310,59 @@ class Viewer:
         t2 = time.perf_counter()
         self.stats.gui_ms = 1e3 * (gui + t2 - t1)
         self.draw_seconds = t2 - t0
+
+    def overlay_text(self) -> list[str]:
+        """The lines drawn over the scene now: the demo's hint until the first demo key or
+        click (what to do, e.g. "Click or press SPACE to fire")."""
+        hint = self.sim.hint
+        return [hint] if hint and self.sim.presses == 0 else []
+
+    def _draw_overlay(self) -> None:
+        """The overlay lines in a small box at the bottom centre of the 3D view."""
+        lines = self.overlay_text()
+        if not lines:
+            return
+        io = imgui.get_io()
+        left = self.view_x / max(self.pixel_ratio, 1e-9)     # the 3D view's left edge [points]
+        x = (left + io.display_size.x) / 2
+        imgui.set_next_window_pos(imgui.ImVec2(x, io.display_size.y - 24), imgui.Cond_.always,
+                                  imgui.ImVec2(0.5, 1.0))
+        imgui.set_next_window_bg_alpha(0.6)
+        flags = (imgui.WindowFlags_.no_decoration | imgui.WindowFlags_.always_auto_resize
+                 | imgui.WindowFlags_.no_inputs | imgui.WindowFlags_.no_saved_settings
+                 | imgui.WindowFlags_.no_focus_on_appearing | imgui.WindowFlags_.no_nav)
+        imgui.begin("##hint", None, flags)
+        for line in lines:
+            imgui.text(line)
+        imgui.end()
+
+    def _draw_compiling(self, screen, seconds: float) -> None:
+        """While the worker compiles: the last picture of the scene, the notice over it. The
+        panel is left out: it reads the simulation, which the worker is stepping."""
+        imgui.new_frame()
+        io = imgui.get_io()
+        left = self.view_x / max(self.pixel_ratio, 1e-9)     # the 3D view's left edge [points]
+        imgui.set_next_window_pos(imgui.ImVec2((left + io.display_size.x) / 2,
+                                               io.display_size.y / 2),
+                                  imgui.Cond_.always, imgui.ImVec2(0.5, 0.5))
+        flags = (imgui.WindowFlags_.no_decoration | imgui.WindowFlags_.always_auto_resize
+                 | imgui.WindowFlags_.no_inputs | imgui.WindowFlags_.no_saved_settings)
+        imgui.begin("##compiling", None, flags)
+        # Seconds since the notice first showed (numba's bursts restart between kernels).
+        if self._notice_since is None:
+            self._notice_since = time.perf_counter() - seconds
+        shown = time.perf_counter() - self._notice_since
+        self.last_notice = compiling.notice(shown, ellipsis="...").capitalize() \
+            if self.notice_kind == "compiling" else "Loading physics kernels ..."
+        imgui.text(self.last_notice)
+        imgui.text_disabled("numba turns the physics into machine code once; later runs load "
+                            "it from the cache.")
+        imgui.end()
+        imgui.render()
+        screen.use()
+        screen.clear(*_BEHIND_PANEL)
+        self.blitter.draw(self.renderer.color_texture, screen, x=self.view_x)
+        self.gui.render(imgui.get_draw_data())
 
     def resize(self, size: tuple[int, int], pixel_ratio: float | None = None) -> None:
         if size[0] > 0 and size[1] > 0:
@@ -362,11 +488,15 @@ class Viewer:
         self.messages.append(text)
         print(f"pointmass: {text}", file=sys.stderr)
 
-    def close(self) -> None:
-        """Wait for the worker, finish a recording, free GL objects, destroy the ImGui
+    def close(self, *, wait: bool = True) -> None:
+        """Wait for the worker (unless ``wait`` is False: the process is ending, and a compile
+        there may take a minute), finish a recording, free GL objects, destroy the ImGui
         contexts."""
         try:
-            self.join_physics()
+            if wait:
+                self.join_physics()
+            else:
+                self._running = None
         finally:
             if self._worker is not None:
                 self._worker.shutdown()
@@ -381,6 +511,17 @@ class Viewer:
         self.renderer.release()
         implot.destroy_context(self.implot_ctx)
         imgui.destroy_context(self.imgui_ctx)
+
+
+def warm_drawing(sim) -> None:
+    """Call, once, the numba kernels drawing a frame calls (compiled or loaded from the cache
+    here, in the worker, not in the main thread)."""
+    world = sim.scene.world
+    world.kinetic_energy()
+    world.potential_energy()
+    from ..render import shadow_splat
+
+    shadow_splat.warm()
 
 
 def overlap_default() -> bool:

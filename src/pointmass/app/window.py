@@ -25,6 +25,8 @@ from .keymap import key_name
 from .viewer import Viewer
 
 _BUTTONS = {mouse.LEFT: "left", mouse.RIGHT: "right", mouse.MIDDLE: "middle"}
+#: Seconds the event loop rests each frame while numba compiles in the physics worker.
+COMPILING_FRAME_PAUSE = 0.1
 
 
 class ViewerWindow(pyglet.window.Window):
@@ -55,6 +57,9 @@ class ViewerWindow(pyglet.window.Window):
         self.imgui_input = PygletImguiInput(self)
         self._mouse_owner: str | None = None        # "gui" or "scene" while a button is down
         self._last = None
+        #: Steps the worker was still compiling when the window closed (``show`` waits for
+        #: them before handing the simulation back; ``pointmass run`` just exits).
+        self.left_running = None
 
     # -- the frame ------------------------------------------------------------------------------
     def tick(self, real_dt: float) -> None:
@@ -64,14 +69,14 @@ class ViewerWindow(pyglet.window.Window):
         self.switch_to()
         self.on_draw()
         self.flip()
-        if self.viewer is not None:
+        if self.viewer is not None and self.viewer.compiling() is None:
             self.viewer.join_physics()
 
     def _quiet(self) -> bool:
         """Before an event touches the viewer: False when closed, else wait for the physics
         worker (no event ever races it)."""
-        if self.viewer is None:
-            return False
+        if self.viewer is None or self.viewer.compiling() is not None:
+            return False              # closed, or the worker compiles: the event is dropped
         self.viewer.join_physics()
         return True
 
@@ -89,13 +94,26 @@ class ViewerWindow(pyglet.window.Window):
         real_dt = now - self._last if self._last is not None else 0.0
         self._last = now
         if self.viewer is not None:
+            if self.viewer.compiling() is not None:
+                # ~10 notice frames a second, not 60: the compile in the worker is Python
+                # holding the GIL, and every frame drawn here takes it away (a sleep frees it;
+                # a signal still interrupts it at once).
+                time.sleep(COMPILING_FRAME_PAUSE)
             self.viewer.update(real_dt)  # pyglet.app then calls on_draw and flips
 
     def run(self) -> None:
         """The event loop: physics and drawing at the display rate (~60 Hz)."""
+        if self.viewer is not None:
+            self.viewer.detach_compiles = True  # a first step's compile: notice, not freeze
+            self.viewer.start_warmup()
         pyglet.clock.schedule_interval(self._scheduled, 1 / 60)
         try:
             pyglet.app.run(1 / 60)
+        except BaseException:
+            # Ctrl-C (or an error): close without waiting for a compile in the worker.
+            if self.viewer is not None:
+                self.close()
+            raise
         finally:
             pyglet.clock.unschedule(self._scheduled)
 
@@ -161,6 +179,10 @@ class ViewerWindow(pyglet.window.Window):
 
     # -- keys -----------------------------------------------------------------------------------
     def on_key_press(self, symbol, modifiers):
+        if symbol == key.ESCAPE and self.viewer is not None \
+                and self.viewer.compiling() is not None:
+            self.close()              # Escape closes even while the first step compiles
+            return pyglet.event.EVENT_HANDLED
         if not self._quiet():
             return pyglet.event.EVENT_HANDLED
         self.imgui_input.key_event(symbol, True)
@@ -195,5 +217,9 @@ class ViewerWindow(pyglet.window.Window):
         if self.viewer is not None:
             self.switch_to()
             viewer, self.viewer = self.viewer, None
-            viewer.close()
+            if viewer.compiling() is not None:   # do not hold the window for the compile
+                self.left_running = viewer._running
+                viewer.close(wait=False)
+            else:
+                viewer.close()
         super().close()

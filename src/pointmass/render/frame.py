@@ -73,6 +73,7 @@ class FrameState:
         body_boxes, body_casters: The hardware path's box bodies as box instance rows and as
             shadow casters, made from the bodies' arrays (``bodies.body_arrays``); ``boxes``
             then holds only the scene's own boxes. None on the software path.
+        shadow_height: Where the blob shadows fall [m] (the scene's, or its ground).
     """
 
     time: float
@@ -91,6 +92,7 @@ class FrameState:
     gpu_links: tuple = ()
     body_boxes: np.ndarray | None = None
     body_casters: np.ndarray | None = None
+    shadow_height: float = 0.0
 
     @classmethod
     def capture(cls, scene: Scene, *, trails=None, show_contacts: bool = False,
@@ -171,7 +173,9 @@ class FrameState:
                    show_ground=bool(scene.show_ground),
                    ground_height=float(scene.ground_height), sky=scene.sky,
                    positions=positions, look=look, gpu_links=gpu_links,
-                   body_boxes=body_boxes, body_casters=body_casters)
+                   body_boxes=body_boxes, body_casters=body_casters,
+                   shadow_height=float(scene.ground_height if scene.shadow_height is None
+                                       else scene.shadow_height))
 
 
 def _joined(parts: list[np.ndarray]) -> np.ndarray:

@@ -20,6 +20,8 @@ from collections.abc import Callable
 from dataclasses import dataclass
 from pathlib import Path
 
+from .. import worker
+from . import shadow_splat
 from .camera import OrbitCamera
 from .context import create_headless_context
 from .progress import ProgressBar
@@ -136,6 +138,7 @@ def record(simulation, path: str | Path | VideoWriter, *, seconds: float, fps: i
         else:
             renderer.resize(writer.size)
         camera = OrbitCamera.from_hint(simulation.scene.camera)
+        worker.call(shadow_splat.warm)      # not in the main thread (see shadow_splat.warm)
         encoder.start()
         for index in range(total):
             camera.track(simulation.scene)
@@ -149,7 +152,8 @@ def record(simulation, path: str | Path | VideoWriter, *, seconds: float, fps: i
                 on_frame(index)
             if bar is not None:
                 bar.update(done)
-            simulation.advance(1.0 / fps)
+            # In the physics worker: a first step's compile leaves Ctrl-C prompt (see worker).
+            worker.call(simulation.advance, 1.0 / fps)
         for rgb in renderer.read_pending():      # the last frames, still in flight
             encoder.put(rgb)
     finally:

@@ -304,7 +304,7 @@ class Renderer:
             so = self.programs["shadow_overlay"]
             so["u_view_proj"].write(vp.tobytes())
             so["u_shadow_region"].value = self._shadows.region
-            so["u_ground"].value = float(scene.ground_height)
+            so["u_ground"].value = float(scene.shadow_height)
             so["u_shadow"].value = 0
             so["u_uv_scale"].value = self._shadows.used / self._shadows.texture.width
             self._shadows.texture.use(0)
@@ -354,7 +354,7 @@ class Renderer:
         for name in ("shadow_blobs", "shadow_blobs_split"):
             prog = self.programs[name]
             prog["u_view_proj"].write(vp.tobytes())
-            prog["u_ground"].value = float(scene.ground_height)
+            prog["u_ground"].value = float(scene.shadow_height)  # the ground or the water
             prog["u_strength"].value = float(style.SHADOW_STRENGTH)
         if n_casters:
             self._casters.vaos["shadow_blobs"].render(moderngl.TRIANGLE_STRIP, vertices=4,

@@ -101,3 +101,11 @@ def shadow_map(spheres: np.ndarray, region, ground: float, strength: float,
     splat(np.ascontiguousarray(spheres, np.float32), np.asarray(region, np.float64),
           float(ground), float(strength), out)
     return out
+
+
+def warm() -> None:
+    """Compile (or load) these kernels for the renderer's argument types, in the calling
+    thread: a recording and a window call it in their physics worker before the first frame,
+    so no kernel compiles in the main thread (where it held off Ctrl-C for seconds)."""
+    casters = np.array([[0.0, 0.5, 0.0, 0.5]], np.float32)   # ShadowMap's rows: float32
+    shadow_map(casters, shadow_region(casters, 0.0, 64), 0.0, 0.5, 64)

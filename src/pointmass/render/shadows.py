@@ -25,6 +25,13 @@ CROWD = 4000
 MAX_SPREAD = SPREAD_FAR
 
 
+def shadow_casters(frame, rows: np.ndarray) -> np.ndarray:
+    """(N, 4) float32 sphere rows (centre, radius) of what casts a shadow in a frame (a
+    ``FrameState``): the non-glowing spheres of ``rows`` (N, 8) and every solid box, as the blob
+    of a ball of about its size."""
+    return np.concatenate([rows[rows[:, 7] < 0.5, :4], ShadowMap.box_rows(frame)[:, :4]])
+
+
 class ShadowMap:
     """The shadow texture and the region of the ground [m] it covers."""
 
@@ -46,10 +53,9 @@ class ShadowMap:
                 glowing ones are lights and cast no shadow.
             strength: Darkness of a resting sphere's shadow, in [0, 1].
         """
-        ground = float(scene.ground_height)
-        box_rows = self.box_rows(scene)[:, :4]
+        ground = float(scene.shadow_height)      # where they fall: the ground or the water
         self.used = TEXELS if len(rows) <= CROWD else TEXELS // 2
-        casters = np.concatenate([rows[rows[:, 7] < 0.5, :4], box_rows])
+        casters = shadow_casters(scene, rows)
         self.region = shadow_region(casters, ground, self.used)
         if self.region[2] <= 0.0:
             return

@@ -7,6 +7,8 @@ from pathlib import Path
 
 import numpy as np
 
+from .. import worker
+from . import shadow_splat
 from .camera import OrbitCamera
 from .context import create_headless_context
 from .renderer import Renderer
@@ -47,7 +49,9 @@ def render_frame(simulation, size: tuple[int, int] = (1280, 720), *, time: float
     """Advance ``simulation`` (a ``Simulation``) by ``time`` seconds and render it offscreen
     from its camera hint; returns (H, W, 3) uint8, top row first."""
     if time > 0:
-        simulation.advance(time)
+        # In the physics worker: a first step's compile leaves Ctrl-C prompt (see worker).
+        worker.call(simulation.advance, time)
+    worker.call(shadow_splat.warm)          # the renderer's kernels too, not in this thread
     ctx = create_headless_context()
     try:
         renderer = Renderer(ctx, size)

@@ -19,7 +19,7 @@ from numba import njit
 from .. import _validate as check
 from .._rows import RowViews, view
 from ..particles import inverse_masses
-from .quaternion import world_inv_inertia
+from .quaternion import world_inv_inertia_numpy
 from .scalar import qrot_inv
 from .shapes import NONE, Box, Sphere, mass_properties
 
@@ -205,7 +205,7 @@ class Bodies(RowViews):
         self._torque[i] = 0.0
         self._inv_mass[i] = inv_m
         self._inv_inertia[i] = inv_i
-        self._inv_inertia_world[i] = world_inv_inertia(quat, inv_i)
+        self._inv_inertia_world[i] = world_inv_inertia_numpy(quat, inv_i)
         self._linear_damping[i] = lin
         self._angular_damping[i] = angd
         self._friction[i] = mu
@@ -241,7 +241,7 @@ class Bodies(RowViews):
         m, moments = mass_properties(shape, density=density, mass=mass)
         self._inv_mass[i] = 0.0 if math.isinf(m) else 1.0 / m
         self._inv_inertia[i] = inverse_inertia(moments)
-        self._inv_inertia_world[i] = world_inv_inertia(self._orientation[i],
+        self._inv_inertia_world[i] = world_inv_inertia_numpy(self._orientation[i],
                                                        self._inv_inertia[i])
         self._shape[i] = shape.kind
         self._size[i] = shape.size
@@ -360,7 +360,7 @@ class Bodies(RowViews):
     def update_world_inertia(self) -> None:
         """Recompute ``inv_inertia_world`` from the orientations (after editing them by hand)."""
         for i in range(self._count):
-            self._inv_inertia_world[i] = world_inv_inertia(self._orientation[i],
+            self._inv_inertia_world[i] = world_inv_inertia_numpy(self._orientation[i],
                                                            self._inv_inertia[i])
 
 
@@ -438,7 +438,7 @@ class Body:
         q = _unit_quaternion(value)
         i = self.index
         self.bodies.orientation[i] = q
-        self.bodies.inv_inertia_world[i] = world_inv_inertia(q, self.bodies.inv_inertia[i])
+        self.bodies.inv_inertia_world[i] = world_inv_inertia_numpy(q, self.bodies.inv_inertia[i])
         self.bodies.wake(i)
 
     @property

@@ -109,15 +109,19 @@ def box_box_into(pa, qa, ha, pb, qb, hb, margin, normal, points, depth, ids, fw,
             if s > sep_e:
                 edge_i, edge_j, sep_e = i, j, s
     # 2. face bias
+    # np.int64(...) on the helpers' integer arguments: a constant, or a variable first set from
+    # one, passed from jitted code types as Literal[int](0), not int64, and numba compiles the
+    # helper again for each (``_face_contact`` was compiled four times, ``_edge_contact``
+    # twice, for one box_tower). Plain int64 arguments compile each helper once.
     face_sep = max(sep_a, sep_b)
     if edge_i >= 0 and sep_e > face_sep + LINEAR_SLOP:
-        return _edge_contact(pa, a, ha, edge_i, pb, b, hb, edge_j, sep_e, normal, points,
-                             depth, ids, fw[24:])
+        return _edge_contact(pa, a, ha, np.int64(edge_i), pb, b, hb, np.int64(edge_j), sep_e,
+                             normal, points, depth, ids, fw[24:])
     if sep_b > sep_a + 0.1 * LINEAR_SLOP:
-        return _face_contact(pb, b, hb, best_b, pa, a, ha, 1, margin, normal, points, depth, ids,
-                             fw[24:], iw)
-    return _face_contact(pa, a, ha, best_a, pb, b, hb, 0, margin, normal, points, depth, ids,
-                         fw[24:], iw)
+        return _face_contact(pb, b, hb, np.int64(best_b), pa, a, ha, np.int64(1), margin,
+                             normal, points, depth, ids, fw[24:], iw)
+    return _face_contact(pa, a, ha, np.int64(best_a), pb, b, hb, np.int64(0), margin, normal,
+                         points, depth, ids, fw[24:], iw)
 
 
 @njit(cache=True, nogil=True)
@@ -189,7 +193,8 @@ def _face_contact(pr, r, hr, face, pi, inc, hi, flip, margin, normal, points, de
         for c in range(3):
             m[c] = sign * r[axis, c]
         off = _dot(m, pr) + hr[axis]
-        count = _clip(poly, code, tag, count, m, off, side, other_poly, other_code, other_tag)
+        count = _clip(poly, code, tag, np.int64(count), m, off, side, other_poly, other_code,
+                      other_tag)
         poly, other_poly = other_poly, poly
         code, other_code = other_code, code
         tag, other_tag = other_tag, tag
@@ -209,7 +214,7 @@ def _face_contact(pr, r, hr, face, pi, inc, hi, flip, margin, normal, points, de
             cand_code[n] = code[k]
             n += 1
     keep = iw[40:44]
-    kept = reduce_points(cand, sep, n, nref, keep)
+    kept = reduce_points(cand, sep, np.int64(n), nref, keep)
     out_sign = 1.0 if flip else -1.0  # the normal runs from B to A
     for c in range(3):
         normal[c] = out_sign * nref[c]

@@ -101,8 +101,11 @@ def pair_contacts(pos, quat, shape, size, friction, restitution, first, second, 
             continue
         mu = math.sqrt(friction[a] * friction[b])
         e = max(restitution[a], restitution[b])
-        count = _emit(count, a, b, pos[a], pos[b], normal, points, depth, ids, got, mu, e, 0,
-                      out_a, out_b, out_n, out_ra, out_rb, out_d, out_mu, out_e, out_key)
+        # np.int64: plain int64 arguments, not Literal[int] ones, so _emit compiles once (see
+        # box_box_into).
+        count = _emit(np.int64(count), a, b, pos[a], pos[b], normal, points, depth, ids, got,
+                      mu, e, np.int64(0), out_a, out_b, out_n, out_ra, out_rb, out_d, out_mu,
+                      out_e, out_key)
     return count
 
 
@@ -141,9 +144,9 @@ def plane_contacts(pos, quat, shape, size, inv_mass, friction, restitution, reac
                 continue
             mu = friction[i] if plane_mu[s] < 0.0 else math.sqrt(friction[i] * plane_mu[s])
             e = restitution[i] if plane_e[s] < 0.0 else max(restitution[i], plane_e[s])
-            count = _emit(count, i, -1, pos[i], pos[i], normal, points, depth, ids, got, mu, e,
-                          plane_serial[s], out_a, out_b, out_n, out_ra, out_rb, out_d, out_mu,
-                          out_e, out_key)
+            count = _emit(np.int64(count), i, np.int64(-1), pos[i], pos[i], normal, points,
+                          depth, ids, got, mu, e, plane_serial[s], out_a, out_b, out_n, out_ra,
+                          out_rb, out_d, out_mu, out_e, out_key)
     return count
 
 

@@ -57,7 +57,9 @@ def box_plane(pb, qb, hb, n, d, margin, normal, points, depth, ids):
             corner[count] = k
             count += 1
     keep = np.empty(4, dtype=np.int64)
-    kept = reduce_points(cand, sep, count, n, keep)
+    # np.int64: ``count`` starts as the constant 0, which would compile reduce_points again
+    # for Literal[int](0) (see box_box.box_box_into)
+    kept = reduce_points(cand, sep, np.int64(count), n, keep)
     for k in range(3):
         normal[k] = n[k]
     for j in range(kept):

@@ -4,6 +4,8 @@ Quaternions are float64 arrays of shape (4,), scalar first. Rotations are active
 ``rotate(q, v)`` turns the body-space vector ``v`` into world space.
 """
 
+import math
+
 import numpy as np
 from numba import njit
 
@@ -42,6 +44,17 @@ def quat_from_axis_angle(axis: np.ndarray, angle: float) -> np.ndarray:
         return np.array([1.0, 0.0, 0.0, 0.0])
     s = np.sin(0.5 * angle) / n
     return np.array([np.cos(0.5 * angle), axis[0] * s, axis[1] * s, axis[2] * s])
+
+
+def quat_from_axis_angle_numpy(axis, angle: float) -> np.ndarray:
+    """``quat_from_axis_angle`` in plain Python floats, for a scene built from Python: the same
+    bits (tested) and nothing to compile while it is built (see ``world_inv_inertia_numpy``)."""
+    ax, ay, az = (float(c) for c in axis)
+    n = math.sqrt(ax ** 2 + ay ** 2 + az ** 2)
+    if n == 0.0:
+        return np.array([1.0, 0.0, 0.0, 0.0])
+    s = math.sin(0.5 * angle) / n
+    return np.array([math.cos(0.5 * angle), ax * s, ay * s, az * s])
 
 
 @njit(cache=True, nogil=True)
@@ -96,6 +109,23 @@ def world_inv_inertia(q: np.ndarray, inv_inertia_body: np.ndarray) -> np.ndarray
         for j in range(3):
             for k in range(3):
                 out[i, j] += r[i, k] * inv_inertia_body[k] * r[j, k]
+    return out
+
+
+def world_inv_inertia_numpy(q: np.ndarray, inv_inertia_body: np.ndarray) -> np.ndarray:
+    """``world_inv_inertia`` in numpy, for one body set from Python (adding a body, setting an
+    orientation): the same products summed in the same order, so the same bits (tested), and
+    no kernel to compile while a demo is built. On a fresh install that compile (numba's first,
+    with its array helpers: seconds) held up a window until the scene existed; now the first
+    step compiles it, in the window's worker, under its notice."""
+    w, x, y, z = (float(c) for c in q)
+    r = np.array([[1 - 2 * (y * y + z * z), 2 * (x * y - w * z), 2 * (x * z + w * y)],
+                  [2 * (x * y + w * z), 1 - 2 * (x * x + z * z), 2 * (y * z - w * x)],
+                  [2 * (x * z - w * y), 2 * (y * z + w * x), 1 - 2 * (x * x + y * y)]])
+    inv = np.asarray(inv_inertia_body, dtype=np.float64)
+    out = np.zeros((3, 3))
+    for k in range(3):
+        out += (r[:, k] * inv[k])[:, None] * r[None, :, k]
     return out
 
 

@@ -138,7 +138,10 @@ def fall_asleep(bodies, contacts, links: np.ndarray, dt: float) -> np.ndarray | 
                      isl.SLEEP_SPEED * isl.TIME_TO_SLEEP, isl.TIME_TO_SLEEP)
     parent = np.empty(n, np.int64)
     c = contacts
-    isl.build_islands(n, c.a, c.b, c.depth, movable, links[:, 0], links[:, 1], parent)
+    # Contiguous copies: a column of two or more links is a strided view, of none or one a
+    # contiguous one, and numba compiled build_islands once for each layout.
+    isl.build_islands(n, c.a, c.b, c.depth, movable, np.ascontiguousarray(links[:, 0]),
+                      np.ascontiguousarray(links[:, 1]), parent)
     was = b.awake.copy()
     slept = isl.fall_asleep(parent, movable, b.awake, b.sleep_time, b.velocity,
                             b.angular_velocity, extent, b.island, isl.TIME_TO_SLEEP,

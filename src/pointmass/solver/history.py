@@ -53,10 +53,14 @@ def _find_rows(old_keys, order, rank, keys, out):
 @njit(cache=True, nogil=True)
 def _gather(rows, kept, out):
     """out[c] = kept[rows[c]] where rows[c] >= 0 (rows of ``out`` left as they are elsewhere);
-    ``kept`` and ``out`` are (M,) or (M, 3)."""
+    ``kept`` and ``out`` are (M, K): an (M,) column is passed as (M, 1), so one compiled copy
+    serves both (and the element loop needs no array-slice assignment, whose error message
+    numba compiles string formatting for)."""
     for c in range(rows.shape[0]):
-        if rows[c] >= 0:
-            out[c] = kept[rows[c]]
+        r = rows[c]
+        if r >= 0:
+            for k in range(out.shape[1]):
+                out[c, k] = kept[r, k]
 
 
 @njit(cache=True, nogil=True)
@@ -236,7 +240,7 @@ class ImpulseHistory:
         rows = np.empty(keys.shape[0], np.int64)
         _find_rows(self._keys, self._order, self._rank, keys, rows)
         self._recalled = rows
-        _gather(rows, self._normal, normal)
+        _gather(rows, self._normal[:, None], normal[:, None])  # views: (M, 1)
         if self._tangent is not None:
             _gather(rows, self._tangent, tangent)
 
