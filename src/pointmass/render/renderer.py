@@ -378,24 +378,12 @@ class Renderer:
             self.programs["lines"]["u_caps"].value = 1.0
         if n_spheres:
             ctx.blend_func = moderngl.ONE, moderngl.ONE
-            g = self.programs["glow"]
-            g["u_view"].write(view.tobytes())
-            g["u_proj"].write(proj.tobytes())
-            g["u_viewport"].value = (float(w), float(h))
-            g["u_min_core"].value = style.GLOW_MIN_CORE * max(0.5, h / 720.0)
-            g["u_halo"].value = style.GLOW_HALO
-            g["u_halo_gain"].value = style.GLOW_HALO_GAIN
+            _set_glow_uniforms(self.programs["glow"], view, proj, w, h)
             self._spheres.vaos["glow"].render(moderngl.TRIANGLE_STRIP, vertices=4,
                                               instances=n_spheres)
         if particles:
             ctx.blend_func = moderngl.ONE, moderngl.ONE
-            g = self.programs["glow_split"]
-            g["u_view"].write(view.tobytes())
-            g["u_proj"].write(proj.tobytes())
-            g["u_viewport"].value = (float(w), float(h))
-            g["u_min_core"].value = style.GLOW_MIN_CORE * max(0.5, h / 720.0)
-            g["u_halo"].value = style.GLOW_HALO
-            g["u_halo_gain"].value = style.GLOW_HALO_GAIN
+            _set_glow_uniforms(self.programs["glow_split"], view, proj, w, h)
             self._particles.draw("glow")
         ctx.blend_func = moderngl.DEFAULT_BLENDING
 
@@ -511,3 +499,14 @@ class Renderer:
         for p in self.programs.values():
             p.release()
         self.fbo = self.color_texture = None
+
+
+def _set_glow_uniforms(program: moderngl.Program, view: np.ndarray, proj: np.ndarray,
+                       w: int, h: int) -> None:
+    """The glow's uniforms, the same for the sphere rows' program and the particle buffers'."""
+    program["u_view"].write(view.tobytes())
+    program["u_proj"].write(proj.tobytes())
+    program["u_viewport"].value = (float(w), float(h))
+    program["u_min_core"].value = style.GLOW_MIN_CORE * max(0.5, h / 720.0)
+    program["u_halo"].value = style.GLOW_HALO
+    program["u_halo_gain"].value = style.GLOW_HALO_GAIN
