@@ -21,7 +21,7 @@ from pathlib import Path
 import pytest
 
 from pointmass import compiling, worker
-from pointmass.numba_cache import default_cache_dir
+from pointmass.numba_cache import default_cache_dir, source_digest
 
 SRC = Path(__file__).resolve().parents[1] / "src"
 #: Seconds a signalled process may take to be gone (the issue asks for 1; slack for a loaded
@@ -46,7 +46,20 @@ def test_the_cache_goes_to_the_per_user_folder(tmp_path):
     env = _env(XDG_CACHE_HOME=str(tmp_path / "xdg"))
     env.pop("NUMBA_CACHE_DIR", None)
     env.pop("POINTMASS_CACHE_DIR", None)
-    assert _probe(env) == str(tmp_path / "xdg" / "pointmass" / "numba")
+    assert _probe(env) == str(tmp_path / "xdg" / "pointmass" / "numba" / source_digest())
+
+
+def test_each_version_of_the_sources_has_its_own_cache_folder(tmp_path):
+    """numba checks only a kernel's own file: a kernel whose callee in another file changed
+    would load stale from the cache. The folder is named by a digest of every source file."""
+    package = tmp_path / "pkg"
+    (package / "sub").mkdir(parents=True)
+    (package / "a.py").write_text("def f(): return 1\n")
+    (package / "sub" / "b.py").write_text("def g(): return 2\n")
+    before = source_digest(package)
+    assert source_digest(package) == before                  # stable
+    (package / "sub" / "b.py").write_text("def g(): return 3\n")
+    assert source_digest(package) != before                  # a callee's file changed
 
 
 def test_a_users_own_numba_cache_dir_is_kept(tmp_path):

@@ -8,13 +8,19 @@ the user has not set it, to ``$XDG_CACHE_HOME/pointmass/numba`` (``~/.cache/poin
 it; ``pointmass/__init__`` imports it before anything that imports numba.
 
 Checkouts do not collide: numba files each source folder's kernels under a sub-folder named by
-the folder's path and its SHA-1 (``numba.core.caching._CacheLocator.get_suitable_cache_subpath``),
-and each index entry carries a hash of its source file, so a worktree, an installed copy and an
-edited file each get their own entries.
+the folder's path and its SHA-1 (``numba.core.caching._CacheLocator.get_suitable_cache_subpath``).
+
+Stale kernels: numba checks only the stamp of the file that defines a kernel, not of the files
+whose functions it calls and inlines (a kernel in ``rigid/step.py`` kept calling the old
+``integrate.free_rotation`` after that file changed, until its cache files were deleted). So the
+folder is one per version of the package's sources: ``.../numba/<digest>``, the digest of every
+``.py`` file's name and contents (about 1 MB, a few ms at import). Any change to the sources
+(an edit, a merge, an upgrade) compiles afresh instead of mixing old and new code.
 """
 
 from __future__ import annotations
 
+import hashlib
 import os
 import sys
 from pathlib import Path
@@ -38,13 +44,25 @@ def default_cache_dir() -> Path:
     return base / "pointmass" / "numba"
 
 
+def source_digest(package: Path | None = None) -> str:
+    """A short digest of the package's Python sources (names and contents), which names the
+    cache folder of this version of them."""
+    package = package or Path(__file__).resolve().parent
+    digest = hashlib.sha1()
+    for path in sorted(package.rglob("*.py")):
+        digest.update(str(path.relative_to(package)).encode())
+        digest.update(path.read_bytes())
+    return digest.hexdigest()[:16]
+
+
 def configure() -> Path | None:
-    """Point numba at the per-user cache unless the user chose a folder already; returns the
-    folder in use (None: numba's own default, when ours cannot be created)."""
+    """Point numba at the per-user cache (the folder of this version of the sources) unless the
+    user chose a folder already; returns the folder in use (None: numba's own default, when
+    ours cannot be created)."""
     chosen = os.environ.get(NUMBA_VARIABLE)
     if chosen:
         return Path(chosen)
-    path = default_cache_dir()
+    path = default_cache_dir() / source_digest()
     try:
         path.mkdir(parents=True, exist_ok=True)
     except OSError:
