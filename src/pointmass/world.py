@@ -24,7 +24,7 @@ from .rigid.joints import Joint
 from .rigid.particle_body import add_particle_contacts
 from .rigid.step import integrate_positions, integrate_velocities
 from .solver import ImpulseHistory, Solver, SolveStats
-from .stability import jump_check, needs_jump_check
+from .stability import SpringCheck, jump_check, needs_jump_check
 
 
 @dataclass(frozen=True)
@@ -264,6 +264,8 @@ class World:
         self._checked_count = 0
         self._checked_bodies = 0  # the same for bodies and the body force generators
         self._jump_check = False
+        #: The springs' check together (stability.py): what it measured last, for this world.
+        self._spring_check = SpringCheck()
         #: Steps taken: a ``StepStats`` sums its kinetic energy only while this is unchanged.
         self._steps = 0
         #: This step's generators, split by ``forces.fold``: (those that add to the
@@ -483,6 +485,7 @@ class World:
         # the earlier substeps are undone from a copy.
         self._folded = fold(self.forces, self._gravity)
         self._jump_check = needs_jump_check(self._folded[0])
+        self._spring_check(self._folded[0], self.particles, self._folded[2], h)
         if not self._sleep:
             self._wake_all()  # bodies put to sleep by hand while sleeping is off
         saved = (self.particles.snapshot(), self.time, self.impulses.snapshot(),
