@@ -27,10 +27,10 @@ from .scalar import qrot
 #: its top spin=45, 0.955), ragdoll 0.60, fracture 0.36, tennis racket 6.1 rad/s (0.06): none
 #: reaches it, so none depends on it.
 MAX_ROTATION = 0.25 * math.pi
-#: ... but a spin past this many radians a step is a blow-up, not a spin to slow down: the kick
-#: returns the body, and the world raises FloatingPointError (|ω| = 1e300 used to be scaled by
-#: cap/inf to exactly 0, silently). The same bound as the drift's (``integrate.MAX_PIECES``).
-MAX_SPIN_TURN = 64.0
+#: A spin whose size is not finite (|ω|² overflowed: |ω| ≳ 1e154 rad/s, or NaN) is a blow-up,
+#: not a spin to slow down: the kick returns the body and the world raises FloatingPointError
+#: (|ω| = 1e300 used to be scaled by cap/inf to exactly 0, silently). A finite spin past the
+#: cap is slowed to it, however large (Cyclone's R2: a huge torque turns a body a quarter turn).
 
 
 @njit(cache=True, nogil=True)
@@ -39,10 +39,9 @@ def integrate_velocities(vel, ang, force, torque, inv_mass, inv_inertia, inv_ine
     """The kick for every body with ``awake`` (N,) True (a sleeping body keeps v = ω = 0).
     Gravity g [m/s²] (3,) acts only on bodies of finite mass, and a torque only about axes of
     finite inertia; bodies of infinite mass keep their velocity (kinematic). Returns the first
-    body whose spin is not finite or beyond ``MAX_SPIN_TURN`` a step (left as it was), or -1;
-    a spin past ``MAX_ROTATION`` a step but within that is slowed to it."""
+    body whose spin's size is not finite (left as it was), or -1; a finite spin past
+    ``MAX_ROTATION`` a step is slowed to it."""
     cap = MAX_ROTATION / dt
-    limit = MAX_SPIN_TURN / dt
     for i in range(vel.shape[0]):
         if not awake[i]:
             continue
@@ -60,7 +59,7 @@ def integrate_velocities(vel, ang, force, torque, inv_mass, inv_inertia, inv_ine
             wy = (ang[i, 1] + dt * (m[1, 0] * tx + m[1, 1] * ty + m[1, 2] * tz)) * keep
             wz = (ang[i, 2] + dt * (m[2, 0] * tx + m[2, 1] * ty + m[2, 2] * tz)) * keep
             speed = math.sqrt(wx * wx + wy * wy + wz * wz)
-            if not speed <= limit:  # NaN and inf too: never scaled to 0
+            if not math.isfinite(speed):  # never scaled by cap/inf to 0
                 return i
             if speed > cap:
                 s = cap / speed
@@ -78,10 +77,10 @@ def spin_error(bodies: Bodies, i: int, dt: float, time: float | None = None) -> 
     w = bodies.angular_velocity[i]
     when = "" if time is None else f" at t = {time:.6g} s"
     return FloatingPointError(
-        f"body {i} spins too fast{when}: |ω| = {math.hypot(*w.tolist()):.4g} rad/s (ω = "
-        f"{w.tolist()}) would turn it more than {MAX_SPIN_TURN:g} rad in a step of {dt:.4g} s "
-        f"(a blow-up: spins past {MAX_ROTATION:.3g} rad a step, {MAX_ROTATION / dt:.3g} rad/s "
-        "here, are slowed to it; see README's rigid bodies)")
+        f"body {i} spins too fast{when}: ω = {w.tolist()} rad/s, whose size squared is not a "
+        f"finite number (a blow-up; finite spins past {MAX_ROTATION:.3g} rad a step, "
+        f"{MAX_ROTATION / dt:.3g} rad/s at dt = {dt:.4g} s, are slowed to it: README's rigid "
+        "bodies)")
 
 
 @njit(cache=True, nogil=True)

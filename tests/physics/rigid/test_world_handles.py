@@ -93,11 +93,11 @@ def test_a_rigid_only_world_whose_energy_overflows_raises_floating_point_error()
 
 def test_a_spin_past_the_bound_raises_instead_of_becoming_zero():
     """|ω| = 1e300 rad/s was scaled by cap/inf to exactly 0 with no word; now the step raises
-    naming the body. A spin past the cap but under the bound is still slowed to the cap
-    (π/4 a step: README's rigid section)."""
+    naming the body. A finite spin past the cap is still slowed to it (π/4 a step: README's
+    rigid section)."""
     world = pm.World(gravity=(0, 0, 0))
     body = world.add_body(Box((0.1, 0.2, 0.3)), angular_velocity=(1e300, 0, 0))
-    with pytest.raises(FloatingPointError, match=r"body 0 spins too fast.*\|ω\| = 1e\+300"):
+    with pytest.raises(FloatingPointError, match=r"body 0 spins too fast.*1e\+300"):
         world.step(DT)
     assert body.angular_velocity[0] == 1e300
     world = pm.World(gravity=(0, 0, 0))
