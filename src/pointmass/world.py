@@ -410,6 +410,7 @@ class World:
             generator.validate(self.particles)
             self.contact_generators.append(generator)
         elif isinstance(generator, BodyForceGenerator):
+            generator.check_handles(self.bodies)
             generator.validate(self.bodies)
             self.body_forces.append(generator)
             self._checked_bodies = max(self._checked_bodies, self.bodies.count)

@@ -9,6 +9,7 @@ import numpy as np
 import pytest
 
 import pointmass as pm
+from pointmass.rigid.forces import BodySpring
 from pointmass.rigid.joints import BallJoint
 from pointmass.rigid.shapes import Box, Sphere
 
@@ -27,7 +28,10 @@ def test_a_body_handle_of_another_world_is_refused_even_where_its_index_exists()
         here.bodies.add_force(foreign[0], (1, 0, 0))
     with pytest.raises(ValueError, match="body_a is a Body of another world"):
         here.add(BallJoint(foreign[0], (0.6, 0, 0), mine[1]))
-    assert not here.joints and np.array_equal(here.bodies.force, np.zeros((2, 3)))
+    with pytest.raises(ValueError, match="body_b is a Body of another world"):
+        here.add(BodySpring(mine[0], (0, 0, 0), foreign[1], (0, 0, 0), 10.0, 1.0))
+    assert not here.joints and not here.body_forces
+    assert np.array_equal(here.bodies.force, np.zeros((2, 3)))
     here.bodies.add_force(mine[0], (1, 0, 0))  # its own handle still works
 
 
