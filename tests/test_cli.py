@@ -49,6 +49,8 @@ def test_parse_size():
     (["render", "side_library", "-o", "{tmp}/x.png", "--set", "spin"], "name=value"),
     (["render", "side_library", "-o", "{tmp}/x.png", "--set", "spin=9999"], "spin"),
     (["render", "side_library", "-o", "{tmp}/x.png", "--set", "nope=1"], "unknown parameter"),
+    (["render", "side_library", "-o", "{tmp}/x.png", "--set", "spin=90", "--set", " spin=80"],
+     "--set spin is given twice ('spin=90' and ' spin=80')"),
     (["render", "side_library", "-o", "{tmp}/x.png", "--size", "big"], "--size"),
     (["render", "side_library", "-o", "{tmp}/x.txt"], "image file"),
     (["render", "side_library", "-o", "{tmp}/missing/x.png"], "does not exist"),
@@ -144,3 +146,31 @@ def test_record_writes_an_mp4(egl, tmp_path, capsys):
                  "0.2", "--fps", "20", "--quiet"]) == 0
     with av.open(str(out)) as c:
         assert sum(1 for _ in c.decode(video=0)) == 4
+
+
+BLOW_UP_DEMO = '''"""Falls, then a user force throws the particle (a blow-up) after 0.5 s."""
+import pointmass as pm
+
+TITLE = "Blows up"
+
+
+def build(params):
+    world = pm.World()
+    world.add_particle((0, 5, 0), radius=0.3)
+    world.add(pm.CustomForce(lambda q: (0, 1e12 if world.time > 0.5 else 0, 0)))
+    return pm.Scene(world)
+'''
+
+
+def test_render_of_a_demo_that_fails_while_stepping_is_one_line(tmp_path, capsys):
+    """As ``record`` reports it: exit 1, one line naming the error and the time, no
+    traceback and no picture (it printed a traceback before)."""
+    pytest.importorskip("moderngl")
+    demo = tmp_path / "blows_up.py"
+    demo.write_text(BLOW_UP_DEMO)
+    out = tmp_path / "shot.png"
+    assert main(["render", str(demo), "-o", str(out), "--size", "80x60", "--time", "2"]) == 1
+    err = capsys.readouterr().err
+    assert len(err.strip().splitlines()) == 1 and "Traceback" not in err
+    assert "rendering stopped by UnstableStepError at t = 0.5" in err
+    assert "no picture was written" in err and not out.exists()

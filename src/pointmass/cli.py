@@ -212,7 +212,15 @@ def cmd_render(args) -> int:
 
     from .render.snapshot import render_frame, save_image
 
-    rgb = render_frame(sim, size, time=args.time, show_contacts=args.contacts)
+    try:  # stepped here, not in render_frame, so a demo that fails says so in one line
+        if args.time > 0:
+            sim.advance(args.time)
+    except (KeyboardInterrupt, Terminated):
+        raise
+    except Exception as exc:  # as ``record`` reports it: one line, status 1
+        raise Failure(f"rendering stopped by {type(exc).__name__} at t = {sim.time:.3f} s of "
+                      f"--time {args.time:g}: {exc}; no picture was written") from None
+    rgb = render_frame(sim, size, show_contacts=args.contacts)
     save_image(rgb, out)
     print(f"wrote {out} ({size[0]}x{size[1]}, t = {sim.time:.3f} s)")
     return 0

@@ -142,9 +142,17 @@ def set_param(params, name: str, value: Any) -> ParamSpec:
 
 
 def apply_overrides(params, assignments: list[str]) -> None:
-    """Apply ``name=value`` strings (from ``--set``) to a Params instance."""
+    """Apply ``name=value`` strings (from ``--set``) to a Params instance. A name given twice
+    is refused (``--set push=2 --set push=3`` kept the last silently: a typo or a leftover in
+    a script, never what was meant)."""
+    given: dict[str, str] = {}
     for text in assignments:
         name, sep, value = text.partition("=")
         if not sep:
             raise ValueError(f"--set expects name=value, got {text!r}")
-        set_param(params, name.strip(), value.strip())
+        name = name.strip()
+        if name in given:
+            raise ValueError(f"--set {name} is given twice ({given[name]!r} and {text!r}); "
+                             "give each parameter once")
+        given[name] = text
+        set_param(params, name, value.strip())

@@ -152,7 +152,7 @@ class Particles(RowViews):
     def check_index(self, index, name: str = "particle") -> int:
         """``index`` as an int if it names a particle, else an IndexError naming ``name``."""
         if isinstance(index, Particle):
-            index = index.index
+            index = index.checked(self, name)
         if isinstance(index, bool) or not isinstance(index, (int, np.integer)):
             raise TypeError(f"{name} must be a particle index (int), got {index!r}")
         if not 0 <= index < self._count:
@@ -164,7 +164,7 @@ class Particles(RowViews):
     def check_indices(self, indices, name: str = "particles") -> np.ndarray:
         """Indices as an int64 array, each naming a particle, else an error naming ``name``."""
         if isinstance(indices, Particle):
-            indices = indices.index
+            indices = indices.checked(self, name)
         return check.indices(indices, name, self._count)
 
     def set_mass(self, index: int, mass: float) -> None:
@@ -277,6 +277,14 @@ class Particle:
         self.index = index
 
     def __index__(self) -> int:
+        return self.index
+
+    def checked(self, particles: Particles, name: str = "particle") -> int:
+        """This handle's index, if it is a handle of ``particles`` (its world's store); else
+        an error naming ``name`` (an index that exists here would act on another particle)."""
+        if self.particles is not particles:
+            raise ValueError(f"{name} is a Particle of another world (index {self.index} "
+                             "there): a handle acts only in the world it came from")
         return self.index
 
     def __repr__(self) -> str:

@@ -183,6 +183,11 @@ class Spring(_SpringSet):
             raise spring_too_stiff(self, s, f"particles {a}–{b}", float(self._k[s]),
                                    float(self._damping[s]), w, dt)
 
+    def stiffness_rows(self, particles: Particles):
+        """(a, b, k, c): the springs' ends, constants and damping, for the world's
+        per-particle stability check (``stability.particle_check``)."""
+        return self.a, self.b, self._k, self._damping
+
     def lengths(self, particles: Particles) -> np.ndarray:
         """Current lengths [m], shape (K,)."""
         p = particles.position
@@ -242,6 +247,10 @@ class AnchoredSpring(_SpringSet):
             i = int(idx[s])
             raise spring_too_stiff(self, s, f"particle {i} to its anchor", float(self._k[s]),
                                    float(self._damping[s]), float(particles.inv_mass[i]), dt)
+
+    def stiffness_rows(self, particles: Particles):
+        """(particles, None, k, c): as ``Spring.stiffness_rows``, the other end fixed."""
+        return self._sel.indices(particles), None, self._k, self._damping
 
     def lengths(self, particles: Particles) -> np.ndarray:
         return np.linalg.norm(particles.position[self._sel.indices(particles)] - self.anchor,

@@ -24,9 +24,9 @@ from .rigid.joint_set import Joints
 from .rigid.joints import Joint
 from .rigid.particle_body import add_particle_contacts
 from .rigid.shapes import Box, Sphere
-from .rigid.step import integrate_positions, integrate_velocities
+from .rigid.step import integrate_positions, integrate_velocities, spin_error
 from .solver import ImpulseHistory, Solver, SolveStats
-from .stability import jump_check, needs_jump_check
+from .stability import SpringCheck, jump_check, needs_jump_check
 
 
 @dataclass(frozen=True)
@@ -266,6 +266,8 @@ class World:
         self._checked_count = 0
         self._checked_bodies = 0  # the same for bodies and the body force generators
         self._jump_check = False
+        #: The springs' check together (stability.py): what it measured last, for this world.
+        self._spring_check = SpringCheck()
         #: Steps taken: a ``StepStats`` sums its kinetic energy only while this is unchanged.
         self._steps = 0
         #: This step's generators, split by ``forces.fold``: (those that add to the
@@ -411,6 +413,7 @@ class World:
             generator.validate(self.particles)
             self.contact_generators.append(generator)
         elif isinstance(generator, BodyForceGenerator):
+            generator.check_handles(self.bodies)
             generator.validate(self.bodies)
             self.body_forces.append(generator)
             self._checked_bodies = max(self._checked_bodies, self.bodies.count)
@@ -458,6 +461,7 @@ class World:
                         f"(the world has {bodies} now): {error}; remove it with world.remove() "
                         "or restore a snapshot that has its bodies") from None
         self._checked_bodies = bodies
+        self.joints.check_bodies(self.bodies)
 
     def add_probe(self, probe):
         """Sample ``probe`` (a ``pointmass.Probe``) after every step; returns it."""
@@ -492,6 +496,7 @@ class World:
         # the earlier substeps are undone from a copy.
         self._folded = fold(self.forces, self._gravity)
         self._jump_check = needs_jump_check(self._folded[0])
+        self._spring_check(self._folded[0], self.particles, self._folded[2], h)
         if not self._sleep:
             self._wake_all()  # bodies put to sleep by hand while sleeping is off
         saved = (self.particles.snapshot(), self.time, self.impulses.snapshot(),
@@ -549,10 +554,14 @@ class World:
                 "energy (or record it every step with a probe)")
         energy = self.kinetic_energy()
         if not math.isfinite(energy):
+            # particles, bodies or both: an empty store has no largest speed (numpy's max of
+            # nothing raised "zero-size array" in a world of bodies alone)
+            speeds = [float(np.abs(v).max()) for v in (self.particles.velocity,
+                      self.bodies.velocity, self.bodies.angular_velocity) if v.size]
             raise FloatingPointError(
                 f"the kinetic energy overflowed ({energy}) at t = {self.time:.6g} s: a velocity "
-                f"is too large to square (largest |v| = "
-                f"{float(np.abs(self.particles.velocity).max()):.3g} m/s)")
+                f"is too large to square (largest |v| or |ω| component = {max(speeds):.3g} "
+                "m/s or rad/s)")
         return energy
 
     def _substep(self, dt: float) -> SolveStats:
@@ -659,9 +668,11 @@ class World:
     def _kick(self, dt: float, which: np.ndarray) -> None:
         """The velocity half of the bodies' integration, for the bodies of mask ``which``."""
         b = self.bodies
-        integrate_velocities(b.velocity, b.angular_velocity, b.force, b.torque, b.inv_mass,
-                             b.inv_inertia, b.inv_inertia_world, b.linear_damping,
-                             b.angular_damping, self._gravity, dt, which)
+        spun = integrate_velocities(b.velocity, b.angular_velocity, b.force, b.torque,
+                                    b.inv_mass, b.inv_inertia, b.inv_inertia_world,
+                                    b.linear_damping, b.angular_damping, self._gravity, dt, which)
+        if spun >= 0:
+            raise spin_error(b, spun, dt, self.time)
 
     def _body_contacts(self, dt: float, acc: np.ndarray):
         """This substep's body rows, then the particle–body rows; returns the packed view (or

@@ -27,9 +27,9 @@ _FIELDS_3 = ("position", "velocity", "angular_velocity", "force", "torque", "inv
 _FIELDS_1 = ("inv_mass", "linear_damping", "angular_damping", "friction", "restitution")
 #: Sleep state (``islands.py``, ``sleep.py``): kept in snapshots like the rest.
 _SLEEP_FIELDS = ("awake", "sleep_time", "island", "still_position", "still_orientation")
-_DTYPES = {"shape": np.int64, "island": np.int64, "awake": np.bool_}
+_DTYPES = {"shape": np.int64, "island": np.int64, "awake": np.bool_, "serial": np.int64}
 _ALL_FIELDS = (*_FIELDS_3, *_FIELDS_1, "orientation", "inv_inertia_world", "shape",
-               *_SLEEP_FIELDS)
+               *_SLEEP_FIELDS, "serial")
 
 
 class Bodies(RowViews):
@@ -91,6 +91,10 @@ class Bodies(RowViews):
         #: How many times islands were woken (the world gives their warm start back when
         #: this changes, ``rigid/sleep.py``).
         self.wakes = 0
+        #: The next body's serial: every body added to this store gets a new one (never
+        #: reused, not rolled back by ``restore``), so a joint or handle can tell the body it
+        #: was made for from a later one that took its index after a restore dropped it.
+        self._next_serial = 0
         self._alloc(max(int(capacity), 1))
 
     # -- storage -------------------------------------------------------------------------------
@@ -100,7 +104,8 @@ class Bodies(RowViews):
         shapes.update(dict.fromkeys(_FIELDS_1, (capacity,)))
         shapes.update(orientation=(capacity, 4), inv_inertia_world=(capacity, 3, 3),
                       shape=(capacity,), **dict.fromkeys(_SLEEP_FIELDS[:3], (capacity,)),
-                      still_position=(capacity, 3), still_orientation=(capacity, 4))
+                      still_position=(capacity, 3), still_orientation=(capacity, 4),
+                      serial=(capacity,))
         for name, shape in shapes.items():
             arr: np.ndarray = np.zeros(shape, dtype=_DTYPES.get(name, np.float64))
             old = getattr(self, "_" + name, None)
@@ -140,6 +145,7 @@ class Bodies(RowViews):
     island = view("island", "A sleeping body's island (lowest index), -1 awake, (N,).")
     still_position = view("still_position", "Where the still-time counts from [m], (N, 3).")
     still_orientation = view("still_orientation", "The orientation it counts from, (N, 4).")
+    serial = view("serial", "Each body's serial in this store (``_next_serial``), (N,).")
 
     # -- adding --------------------------------------------------------------------------------
     def add(self, position=(0.0, 0.0, 0.0), orientation=(1.0, 0.0, 0.0, 0.0),
@@ -217,6 +223,8 @@ class Bodies(RowViews):
         self._island[i] = -1
         self._still_position[i] = pos
         self._still_orientation[i] = quat
+        self._serial[i] = self._next_serial
+        self._next_serial += 1
         return i
 
     def add_sphere(self, radius: float, position=(0.0, 0.0, 0.0), velocity=(0.0, 0.0, 0.0),
@@ -253,7 +261,7 @@ class Bodies(RowViews):
     def check_index(self, index, name: str = "body") -> int:
         """``index`` as an int if it names a body, else an error naming ``name``."""
         if isinstance(index, Body):
-            index = index.index
+            index = index.checked(self, name)
         if isinstance(index, bool) or not isinstance(index, (int, np.integer)):
             raise TypeError(f"{name} must be a body index (int), got {index!r}")
         if not 0 <= index < self._count:
@@ -403,11 +411,24 @@ def _unit_quaternion(value) -> np.ndarray:
 class Body:
     """Object-style handle on one body: reads and writes go straight to the arrays."""
 
-    __slots__ = ("bodies", "index")
+    __slots__ = ("bodies", "index", "serial")
 
     def __init__(self, bodies: Bodies, index: int) -> None:
         self.bodies = bodies
         self.index = index
+        self.serial = int(bodies.serial[index])
+
+    def checked(self, bodies: Bodies, name: str = "body") -> int:
+        """This handle's index, if it names a body of ``bodies`` (its world's store) that is
+        still the body it was made for; else an error naming ``name``."""
+        if self.bodies is not bodies:
+            raise ValueError(f"{name} is a Body of another world (index {self.index} there): "
+                             "a handle acts only in the world whose add_body returned it")
+        if not (self.index < bodies.count and bodies.serial[self.index] == self.serial):
+            raise ValueError(f"{name} is a stale Body handle: body {self.index} was dropped "
+                             "(a restore of an older snapshot) and its index is another "
+                             "body's now, or none")
+        return self.index
 
     def __index__(self) -> int:
         return self.index

@@ -45,6 +45,14 @@ class BodyForceGenerator:
     def validate(self, bodies: Bodies) -> None:
         """Check body indices when added to a world (raise naming the bad parameter)."""
 
+    def check_handles(self, bodies: Bodies) -> None:
+        """Refuse a ``Body`` handle given to the constructor that is not of ``bodies`` (another
+        world's, or stale): its index would act on whatever body has it here."""
+        for name, handles in getattr(self, "_handles", {}).items():
+            for handle in handles if isinstance(handles, list) else [handles]:
+                if isinstance(handle, Body):
+                    handle.checked(bodies, name)
+
     def potential_energy(self, bodies: Bodies) -> float:
         """Potential energy stored by this generator [J] (0 when it has none)."""
         return 0.0
@@ -119,6 +127,7 @@ class BodySpring(BodyForceGenerator):
                  damping: float = 0.0) -> None:
         self.a = body_index(body_a, "body_a")
         self.b = body_index(body_b, "body_b")
+        self._handles = {"body_a": body_a, "body_b": body_b}
         if self.a == self.b:
             raise ValueError(f"body_a and body_b must be different bodies, both are {self.a}")
         self.local_a = check.vec3(local_a, "local_a")
@@ -191,6 +200,7 @@ class AnchoredBodySpring(BodySpring):
                  damping: float = 0.0) -> None:
         self.a = body_index(body, "body")
         self.b = -1
+        self._handles = {"body": body}
         self.local_a = check.vec3(local, "local")
         self.anchor = anchor
         self.k = k
@@ -278,6 +288,7 @@ class Aero(BodyForceGenerator):
     def __init__(self, body, tensor, local_position=(0.0, 0.0, 0.0),
                  wind=(0.0, 0.0, 0.0)) -> None:
         self.index = body_index(body, "body")
+        self._handles = {"body": body}
         self.tensor = tensor
         self.local_position = check.vec3(local_position, "local_position")
         self.wind = wind
@@ -393,6 +404,7 @@ class BodyBuoyancy(BodyForceGenerator):
                  water_height: float = 0.0, liquid_density: float = 1000.0,
                  gravity: float = 9.81) -> None:
         self.index = body_index(body, "body")
+        self._handles = {"body": body}
         self.local_point = check.vec3(local_point, "local_point")
         self.max_depth = check.scalar(max_depth, "max_depth", low=0.0, low_open=True)
         self.volume = check.scalar(volume, "volume", low=0.0, low_open=True)
@@ -548,6 +560,7 @@ class BodyForce(BodyForceGenerator):
                             f"(force, torque), got {fn!r}")
         self.fn = fn
         self.indices = None if bodies is None else [body_index(b, "bodies") for b in bodies]
+        self._handles = {"bodies": [] if bodies is None else list(bodies)}
 
     def validate(self, bodies: Bodies) -> None:
         for i in self.indices or ():

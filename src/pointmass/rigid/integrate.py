@@ -37,6 +37,11 @@ MAX_ITERATIONS = 30
 TOLERANCE = 1e-13
 #: Largest turn [rad] solved in one piece (see ``free_rotation``).
 MAX_TURN = 1.0
+#: Most pieces a step is split into: a turn of more than MAX_PIECES × MAX_TURN rad in one step
+#: (at 60 Hz, 3 840 rad/s) is a blow-up, not a spin; the drift returns NaN for it, which the
+#: stepper reports as a FloatingPointError. (Unbounded, a solver that threw a body to 1e200
+#: rad/s made this loop run for hours: one piece per radian.)
+MAX_PIECES = 64
 
 
 @njit(cache=True, nogil=True)
@@ -58,7 +63,11 @@ def free_rotation(qw, qx, qy, qz, wx, wy, wz, ix, iy, iz, h):
     # Newton converges (to 1e-11 in energy) up to about 1 rad per step and fails past 3; the
     # stepper caps a step at π/4, but a contact solver may spin a body faster before this drift,
     # so a long turn is split into pieces of at most MAX_TURN (L and energy are still kept).
-    pieces = max(1, math.ceil(h * math.sqrt(wx * wx + wy * wy + wz * wz) / MAX_TURN))
+    turn = h * math.sqrt(wx * wx + wy * wy + wz * wz) / MAX_TURN
+    if not turn <= MAX_PIECES:  # NaN too
+        nan = math.nan
+        return nan, nan, nan, nan, nan, nan, nan
+    pieces = max(1, math.ceil(turn))
     hp = h / pieces
     for _ in range(pieces):
         qw, qx, qy, qz, wx, wy, wz = _turn(qw, qx, qy, qz, wx, wy, wz, ix, iy, iz, hp)

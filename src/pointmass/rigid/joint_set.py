@@ -34,6 +34,9 @@ class JointArrays:
     frame_b: np.ndarray
     kind: np.ndarray
     limits: np.ndarray
+    #: The bodies' serials when each joint was bound (``Bodies.serial``), (J,); -1: none.
+    serial_a: np.ndarray = None
+    serial_b: np.ndarray = None
 
 
 class Joints:
@@ -68,6 +71,7 @@ class Joints:
     def remove(self, joint: Joint) -> None:
         k = next(i for i, j in enumerate(self.items) if j is joint)
         del self.items[k]
+        joint.unbind()
         self.point = np.delete(self.point, k, axis=0)
         self.turn = np.delete(self.turn, k, axis=0)
         self._packed = None
@@ -76,6 +80,30 @@ class Joints:
         """Check every joint's bodies still exist (after a restore dropped some)."""
         for joint in self.items:
             joint.validate(bodies)
+
+    def check_bodies(self, bodies: Bodies) -> None:
+        """Refuse a joint whose body is gone even where its index exists again: a restore
+        dropped it and a later body took the index (serials differ). One comparison a joint
+        a step."""
+        if not self.items:
+            return
+        j = self.arrays()
+        n = bodies.count
+        serial = bodies.serial
+        ok_a = (j.a < n) & (serial[np.minimum(j.a, n - 1)] == j.serial_a) if n else j.a < 0
+        ok_b = (j.b < 0) | ((j.b < n) & (serial[np.clip(j.b, 0, max(n - 1, 0))] == j.serial_b)
+                            if n else j.b < 0)
+        bad = np.flatnonzero(~(ok_a & ok_b))
+        if bad.size:
+            k = int(bad[0])
+            joint = self.items[k]
+            which = "body_a" if not ok_a[k] else "body_b"
+            index = joint.a if which == "body_a" else joint.b
+            now = "another body has its index now" if index < n else "no body has its index"
+            raise IndexError(
+                f"{type(joint).__name__} {k} ({which} = {index}) lost its body: a restore "
+                f"dropped body {index}, and {now}; remove the joint with world.remove() or "
+                "restore a snapshot that has its body")
 
     # -- warm start --------------------------------------------------------------------------
     def clear_impulses(self) -> None:
@@ -105,7 +133,9 @@ class Joints:
                 frame_a=np.array([j.frame_a for j in items], np.float64).reshape(-1, 4),
                 frame_b=np.array([j.frame_b for j in items], np.float64).reshape(-1, 4),
                 kind=np.array([j.variant for j in items], np.int64),
-                limits=np.array([j.limits() for j in items], np.float64).reshape(-1, 3))
+                limits=np.array([j.limits() for j in items], np.float64).reshape(-1, 3),
+                serial_a=np.array([j.serials[0] for j in items], np.int64),
+                serial_b=np.array([j.serials[1] for j in items], np.int64))
         return self._packed
 
     def angular_errors(self, bodies: Bodies) -> np.ndarray:

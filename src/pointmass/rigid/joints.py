@@ -22,7 +22,7 @@ import math
 import numpy as np
 
 from .. import _validate as check
-from .bodies import Bodies, body_index, world_rotation
+from .bodies import Bodies, Body, body_index, world_rotation
 
 #: Joint kinds, as the kernels read them.
 BALL = 0
@@ -62,6 +62,13 @@ class Joint:
     def __init__(self, body_a, local_a, body_b=None, local_b=None, *, axis=(0.0, 1.0, 0.0)):
         self.a = body_index(body_a, "body_a")
         self.b = -1 if body_b is None else body_index(body_b, "body_b")
+        #: The handles given (``Body``, or None for an index): checked against the world the
+        #: joint is added to, so a handle of another world is refused there.
+        self._handles = (body_a if isinstance(body_a, Body) else None,
+                         body_b if isinstance(body_b, Body) else None)
+        #: The serials of its bodies when bound: a restore that dropped one, and a new body
+        #: that took its index, cannot silently take its place (``Joints.check_bodies``).
+        self.serials = (-1, -1)
         if self.a == self.b:
             raise ValueError(f"body_a and body_b must be different bodies, both are {self.a}")
         self.local_a = check.vec3(local_a, "local_a")
@@ -91,9 +98,18 @@ class Joint:
                                  f"{name}: {index} is not a body; there are none yet")
 
     def bind(self, bodies: Bodies) -> None:
-        """Record what the current pose defines: B's anchor (if not given) and the frames."""
+        """Record what the current pose defines: B's anchor (if not given) and the frames.
+        A joint belongs to one world: binding it to a second is refused."""
+        if self._bodies is not None and self._bodies is not bodies:
+            raise ValueError(f"this {type(self).__name__} is already in another world: a joint "
+                             "belongs to one world (remove it there first, or make another)")
+        for name, handle in zip(("body_a", "body_b"), self._handles):
+            if handle is not None:
+                handle.checked(bodies, name)
         self.validate(bodies)
         self._bodies = bodies
+        self.serials = (int(bodies.serial[self.a]),
+                        -1 if self.b < 0 else int(bodies.serial[self.b]))
         qa = bodies.orientation[self.a]
         rot_a = _rotation(qa)
         if self.local_b is None:
@@ -106,6 +122,10 @@ class Joint:
         world = rot_a @ frame_a
         rot_b = np.eye(3) if self.b < 0 else _rotation(bodies.orientation[self.b])
         self.frame_b = quat_from_basis(rot_b.T @ world)
+
+    def unbind(self) -> None:
+        """Forget the world (``world.remove``): the joint may then join another one."""
+        self._bodies = None
 
     # -- drawing ---------------------------------------------------------------------------------
     def anchors(self) -> tuple[np.ndarray, np.ndarray]:

@@ -22,6 +22,11 @@ from .. import _validate as check
 NONE = 0
 SPHERE = 1
 BOX = 2
+#: Sizes a shape takes [m]: a radius or half-extent in [MIN_SIZE, MAX_SIZE]. Past them the
+#: volume and moments (size³, size²) overflowed (Sphere(1e300): OverflowError) or rounded to 0
+#: (Sphere(1e-300): "inertia must be three principal moments", though none was given).
+MIN_SIZE = 1e-9
+MAX_SIZE = 1e9
 
 
 @dataclass(frozen=True)
@@ -31,8 +36,8 @@ class Sphere:
     radius: float
 
     def __post_init__(self) -> None:
-        object.__setattr__(self, "radius", check.scalar(self.radius, "radius", low=0.0,
-                                                       low_open=True))
+        object.__setattr__(self, "radius", check.scalar(self.radius, "radius", low=MIN_SIZE,
+                                                       high=MAX_SIZE))
 
     kind = SPHERE
 
@@ -58,8 +63,9 @@ class Box:
 
     def __post_init__(self) -> None:
         half = check.vec3(self.half_extents, "half_extents")
-        if not (half > 0.0).all():
-            raise ValueError(f"half_extents must each be > 0 m, got {tuple(half.tolist())}")
+        if not ((half >= MIN_SIZE) & (half <= MAX_SIZE)).all():
+            raise ValueError(f"half_extents must each be in [{MIN_SIZE:g}, {MAX_SIZE:g}] m, got "
+                             f"{tuple(half.tolist())}")
         object.__setattr__(self, "half_extents", tuple(half.tolist()))
 
     kind = BOX
