@@ -37,6 +37,11 @@ MAX_ITERATIONS = 30
 TOLERANCE = 1e-13
 #: Largest turn [rad] solved in one piece (see ``free_rotation``).
 MAX_TURN = 1.0
+#: Most pieces one drift is split into: a body that would turn further in one step (over 64 rad,
+#: 3 840 rad/s at 60 Hz; the stepper's cap is π/4 a step, only a solver's impulse gets past it)
+#: is slowed to that first, energy only leaving. Without a cap a body a joint had spun to
+#: 1e58 rad/s asked for 1e56 pieces: the step never returned (issue 30).
+MAX_PIECES = 64
 
 
 @njit(cache=True, nogil=True)
@@ -58,7 +63,14 @@ def free_rotation(qw, qx, qy, qz, wx, wy, wz, ix, iy, iz, h):
     # Newton converges (to 1e-11 in energy) up to about 1 rad per step and fails past 3; the
     # stepper caps a step at π/4, but a contact solver may spin a body faster before this drift,
     # so a long turn is split into pieces of at most MAX_TURN (L and energy are still kept).
-    pieces = max(1, math.ceil(h * math.sqrt(wx * wx + wy * wy + wz * wz) / MAX_TURN))
+    turn = h * math.sqrt(wx * wx + wy * wy + wz * wz)
+    if turn > MAX_PIECES * MAX_TURN:  # (also catches inf; NaN falls through to one piece)
+        s = MAX_PIECES * MAX_TURN / turn
+        wx *= s
+        wy *= s
+        wz *= s
+        turn = MAX_PIECES * MAX_TURN
+    pieces = max(1, math.ceil(turn / MAX_TURN)) if turn == turn else 1
     hp = h / pieces
     for _ in range(pieces):
         qw, qx, qy, qz, wx, wy, wz = _turn(qw, qx, qy, qz, wx, wy, wz, ix, iy, iz, hp)
