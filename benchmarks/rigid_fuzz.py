@@ -3,7 +3,8 @@ command that counts what goes wrong over many seeds.
 
 A scene, from its seed alone: 1–6 moving boxes and spheres of 0.05–2 m and 1 g–10 t (log-
 uniform), speeds to 50 m/s, spins to 20 rad/s, friction and restitution in [0, 1]; 0–2 static
-bodies; 0–3 ball or hinge joints between two bodies or from a body to a world point; 0–4
+bodies; 0–3 ball or hinge joints, at a random point of body A, to another body (met where the
+point is) or to a world point (where it is, or up to 0.5 m off, inside the walls); 0–4
 particles with a radius; no scenery, a ground, or six walls (a third each); gravity or none
 (half each: the force-free scenes, where no step may gain kinetic energy). World() defaults,
 300 steps at 1/60 s.
@@ -27,6 +28,7 @@ import numpy as np
 
 import pointmass as pm
 from pointmass.rigid import collide as body_collide
+from pointmass.rigid.bodies import world_rotation
 from pointmass.rigid.contacts import BodyContacts
 from pointmass.rigid.joints import BallJoint, HingeJoint
 from pointmass.rigid.shapes import Box, Sphere
@@ -108,8 +110,11 @@ def build(seed: int) -> tuple[pm.World, bool]:
             b = int(rng.integers(0, bodies - 1))
             b += b >= a
             world.add(kind(a, local, b, None, axis=axis))
-        else:
-            anchor = world.bodies.position[a] + rng.uniform(-1.0, 1.0, 3)
+        else:  # the point where it is, or up to 0.5 m off (pulled there), inside the walls
+            anchor = world.bodies.position[a] + world_rotation(world.bodies.orientation[a]) \
+                @ local
+            if rng.random() < 0.5:
+                anchor = np.clip(anchor + rng.uniform(-0.5, 0.5, 3), -room + 0.05, room - 0.05)
             world.add(kind(a, local, None, anchor, axis=axis))
     count = int(rng.integers(0, 5))
     for _ in range(count):
@@ -246,23 +251,27 @@ def main() -> None:
         return
     rows, hangs = [], []
     while seeds:
-        proc = subprocess.run([sys.executable, __file__, "--child", "--steps", str(args.steps),
-                               "--hang", str(args.hang), "--seeds", f"{seeds[0]}:{seeds[-1] + 1}"],
-                              capture_output=True, text=True, check=False)
+        proc = subprocess.Popen([sys.executable, __file__, "--child", "--steps", str(args.steps),
+                                 "--hang", str(args.hang), "--seeds",
+                                 f"{seeds[0]}:{seeds[-1] + 1}"],
+                                stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
         started = None
-        for line in proc.stdout.splitlines():
+        for line in proc.stdout:  # streamed, so a long run shows its progress
             parts = line.split()
             if parts[0] == "warm":
                 continue
             if parts[0] == "start":
                 started = int(parts[1])
             elif parts[0] == "done":
+                print(line, end="", flush=True)
                 rows.append(parts[1:])
                 started = None
+        err = proc.stderr.read()
+        proc.wait()
         if started is None:
             break
-        if "Timeout" not in proc.stderr:
-            raise RuntimeError(f"seed {started} failed:\n{proc.stderr[-3000:]}")
+        if "Timeout" not in err:
+            raise RuntimeError(f"seed {started} failed:\n{err[-3000:]}")
         hangs.append(started)
         print(f"seed {started}: a step did not return within {args.hang} s", flush=True)
         seeds = [s for s in seeds if s > started]
