@@ -27,7 +27,7 @@ from pointmass.rigid.joints import BallJoint, HingeJoint
 from pointmass.rigid.shapes import Box, Sphere
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[2] / "benchmarks"))
-import rigid_fuzz as fuzz  # noqa: E402
+import rigid_fuzz as fuzz
 
 DT = 1.0 / 60.0
 #: A step that has not returned after this long [s] is a hang: the watchdog dumps every

@@ -13,9 +13,10 @@ without margin or travel (overlaps only), and if one is deeper than ``LATE_DEPTH
    other end's corner missed by the four points kept, gained 0.12 m/s downwards a step, from
    gravity, for 250 steps while the projection lifted it back: energy from nowhere);
 2. they are projected like the rows (``body_stages.project_positions``: positions only; a
-   turned body keeps its spin in its own frame, ``body_energy.keep_spin``). Below that depth the next substep's rows
-take over, as they did before; so a resting pile, whose rows were projected to within
-``body_stages.SLOP``, is left to the same bits.
+   turned body keeps its spin in its own frame, ``body_energy.keep_spin``).
+
+Below that depth the next substep's rows take over, as they did before; so a resting pile,
+whose rows were projected to within ``body_stages.SLOP``, is left to the same bits.
 """
 
 from __future__ import annotations
@@ -25,9 +26,8 @@ import numpy as np
 from ..rigid import collide
 from ..rigid.contacts import BodyContacts
 from ..rigid.scalar import qrot_inv
-from . import body_energy
+from . import body_energy, body_solver
 from . import body_stages as st
-from . import body_solver
 from .body_solver import MAX_POSITION_PASSES
 from .history import ImpulseHistory
 
