@@ -41,6 +41,10 @@ SPEED_LIMIT = 1e4
 ENERGY_SLACK = 1e-9
 #: Overlap [m] at the end of a step that counts as deep.
 DEEP = 0.02
+#: The angular velocity [rad/s] an instrumented copy of the solver leaves where a step would
+#: never return (the free rotation asked for more than 1e7 pieces), so a measurement of the old
+#: code counts hangs without a process per hang; the code itself never writes it.
+HANG_MARK = -7.25e300
 
 
 def _unit(rng) -> np.ndarray:
@@ -134,6 +138,7 @@ class Outcome:
     joints: int
     steps: int = 0
     refused: str | None = None  # the error that ended it, if any
+    hang: int | None = None  # a step that would not have returned (see ``HANG_MARK``)
     explosion: int | None = None
     speed: float = 0.0
     gain: int | None = None  # first step gaining > ENERGY_SLACK relative (force-free)
@@ -180,6 +185,9 @@ def run(seed: int, steps: int = STEPS, watchdog: float | None = None) -> Outcome
                 faulthandler.cancel_dump_traceback_later()
         out.slowest = max(out.slowest, time.perf_counter() - start)
         out.steps = n
+        if (world.bodies.angular_velocity == HANG_MARK).any():
+            out.hang = n
+            break
         fast = speed(world)
         out.speed = max(out.speed, fast)
         if not math.isfinite(fast) or fast > SPEED_LIMIT:
@@ -232,7 +240,7 @@ def _child(seeds: list[int], steps: int, hang: float) -> None:
         o = run(seed, steps, watchdog=hang)
         print(f"done {seed} {o.force_free:d} {o.joints} {o.steps} {o.explosion} {o.speed:.3g} "
               f"{o.gain} {o.gain_1e3} {o.worst_gain:.3g} {o.deep} {o.deepest:.3g} "
-              f"{o.slowest:.3g} {o.refused is not None:d}", flush=True)
+              f"{o.slowest:.3g} {o.refused is not None:d} {o.hang}", flush=True)
 
 
 def main() -> None:
@@ -282,6 +290,8 @@ def _report(rows, hangs) -> None:
     def num(v):
         return None if v == "None" else float(v)
 
+    hangs = hangs + [int(r[0]) for r in rows if r[13] != "None"]
+    rows = [r for r in rows if r[13] == "None"]
     n = len(rows) + len(hangs)
     joints = {int(r[0]): int(r[2]) for r in rows}
     expl = [r for r in rows if r[4] != "None"]

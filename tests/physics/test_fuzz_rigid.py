@@ -103,23 +103,22 @@ def _watched_steps(world: pm.World, steps: int) -> list[float]:
     return speeds
 
 
-def test_a_body_locked_by_two_joints_and_hit_hard_keeps_stepping():
-    """Issue 30's hang: a 55 g box held by a ball joint and a hinge to two world points (the
-    anchors not on the hinge's axis, so the two lock it), hit from below by a 2.3 kg box at
-    16 m/s. Before: it spun at 4.7e6 rad/s after one step and step 3 never returned (the free
-    rotation split the turn into h·|ω| pieces: 1e56 of them)."""
+def test_a_body_held_by_two_joints_and_hit_hard_keeps_stepping():
+    """Issue 30's hang: a 55 g box held by a ball joint and a hinge to two world points (its
+    two joint points 16 cm apart, the anchors 105 cm apart and not on the hinge's axis: the
+    joints cannot all hold), hit from below by a 2.3 kg box at 16 m/s. Before: the first step
+    took 0.36 s and step 3 never returned (the joints spun the box up without bound, and the
+    free rotation split its turn into h·|ω| pieces: 1e56 of them)."""
     world = pm.World()
     box = world.add_body(Box((0.1, 0.05, 0.08)), (0.0, 1.0, 0.0), mass=0.055)
-    world.add(BallJoint(box, (0.0, 0.05, 0.08)))
-    world.add(HingeJoint(box, (0.0, -0.05, -0.08), axis=(1.0, 0.0, 0.0)))
-    hammer = world.add_body(Box((0.2, 0.1, 0.2)), (0.02, 0.5, 0.01), mass=2.3,
-                            velocity=(0.0, 16.0, 0.0))
-    energy = world.kinetic_energy()
-    speeds = _watched_steps(world, 120)
-    assert max(speeds) <= 16.0 + 120 * DT * 9.81  # nothing faster than the blow and gravity
-    assert np.abs(world.bodies.angular_velocity).max() < 1e3
-    assert world.kinetic_energy() < energy
-    assert world.bodies.position[hammer, 1] < 1.0  # it hit the held box, which stopped it
+    world.add(BallJoint(box, (0.08, 0.0, 0.0), None, (0.5, 1.5, 0.5)))
+    world.add(HingeJoint(box, (-0.08, 0.0, 0.0), None, (-0.2, 0.6, 0.4), axis=(0.6, 0.0, 0.8)))
+    world.add_body(Box((0.2, 0.1, 0.2)), (0.02, 0.5, 0.01), mass=2.3, velocity=(0.0, 16.0, 0.0))
+    limit = world.kinetic_energy() + 2.355 * 9.81 * 20.0  # what the blow and a 20 m fall give
+    for _ in range(120):
+        _watched_steps(world, 1)
+        assert world.kinetic_energy() < limit
+    assert np.isfinite(world.bodies.position).all()
 
 
 # -- energy from contacts (issue 31, item 2) ----------------------------------------------------
