@@ -5,6 +5,11 @@ bodies it sees may be a packed view (``rigid/particle_body.py``): the bodies, th
 that touch them as bodies of zero inverse inertia, so particle–body points are rows like any
 other; particle–particle contacts stay in the particle stages.
 The velocity half runs before the bodies drift, the position half after (``World._substep``).
+
+Neither half adds kinetic energy: a velocity solve that gained is redone the way that cannot
+(``body_energy``), and the projections move positions only, each turned body keeping its spin
+in its own frame. After both, overlaps that no row foresaw are stopped and projected
+(``body_late``, called by the world).
 """
 
 from __future__ import annotations
