@@ -650,7 +650,8 @@ class World:
         planes = [g for g in self.contact_generators if isinstance(g, Plane)]
         exclude = self.joints.pair_keys(b.count) if self.joints else None
         live = b.awake if self._sleep and not b.awake.all() else None
-        rows.position_passes += project_late(b, planes, exclude, self._late_contacts, dt, live)
+        rows.position_passes += project_late(b, planes, exclude, self._late_contacts, dt,
+                                            self.body_contacts.key, live)
         self._body_rows = rows
         return rows
 

@@ -15,13 +15,16 @@ without margin or travel (overlaps only), and if one is deeper than ``LATE_DEPTH
 2. they are projected like the rows (``body_stages.project_positions``: positions only; a
    turned body keeps its spin in its own frame, ``body_energy.keep_spin``).
 
-Below that depth the next substep's rows take over, as they did before; so a resting pile,
-whose rows were projected to within ``body_stages.SLOP``, is left to the same bits.
+Only points that are not among the substep's rows count (by key): what the rows' own
+projection left (a falling pile's, a few mm) is theirs to finish next substep, as before, and
+below ``LATE_DEPTH`` so are the new ones. Measured on the 250-box pit during its drop: with
+every point counted the stage ran on 76 of 120 steps and took 58 % of the time.
 """
 
 from __future__ import annotations
 
 import numpy as np
+from numba import njit
 
 from ..rigid import collide
 from ..rigid.contacts import BodyContacts
@@ -35,14 +38,18 @@ from .history import ImpulseHistory
 LATE_DEPTH = 1e-3
 
 
-def project_late(bodies, planes, exclude, contacts: BodyContacts, dt: float,
+def project_late(bodies, planes, exclude, contacts: BodyContacts, dt: float, known: np.ndarray,
                  active: np.ndarray | None = None) -> int:
     """Find the overlaps of ``bodies`` now (pairs not in ``exclude``, bodies of ``active``)
-    into ``contacts`` and project them if one is deeper than ``LATE_DEPTH``; returns the
-    projection passes run (0: none needed)."""
+    into ``contacts``, keep those that are not among this substep's rows (keys ``known``:
+    what the rows' projection left is theirs to finish next substep, as before) and stop and
+    project them if one is deeper than ``LATE_DEPTH``; returns the projection passes run."""
     b = bodies
     collide.generate(b, planes, 0.0, contacts, margin=0.0, active=active, exclude=exclude)
     c = contacts
+    if c.count == 0 or float(c.depth.max()) <= LATE_DEPTH:
+        return 0
+    c.keep(~np.isin(c.key, known))
     if c.count == 0 or float(c.depth.max()) <= LATE_DEPTH:
         return 0
     c.friction[:] = 0.0
@@ -82,12 +89,16 @@ class _Masked:
         self.inv_inertia = b.inv_inertia
 
 
-def _anchors(ca, cb, ra, rb, quat, la, lb) -> None:
+@njit(cache=True, nogil=True)
+def _anchors(ca, cb, ra, rb, quat, la, lb):
     """Body-fixed arms of each point (the world point for scenery), as ``body_stages.prepare``."""
     for k in range(ca.shape[0]):
         a = ca[k]
-        la[k] = qrot_inv(*quat[a], *ra[k])
-        if cb[k] >= 0:
-            lb[k] = qrot_inv(*quat[cb[k]], *rb[k])
+        la[k, 0], la[k, 1], la[k, 2] = qrot_inv(quat[a, 0], quat[a, 1], quat[a, 2], quat[a, 3],
+                                                ra[k, 0], ra[k, 1], ra[k, 2])
+        i = cb[k]
+        if i >= 0:
+            lb[k, 0], lb[k, 1], lb[k, 2] = qrot_inv(quat[i, 0], quat[i, 1], quat[i, 2],
+                                                    quat[i, 3], rb[k, 0], rb[k, 1], rb[k, 2])
         else:
-            lb[k] = rb[k]
+            lb[k, 0], lb[k, 1], lb[k, 2] = rb[k, 0], rb[k, 1], rb[k, 2]
