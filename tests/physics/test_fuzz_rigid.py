@@ -32,15 +32,17 @@ import rigid_fuzz as fuzz
 DT = 1.0 / 60.0
 #: A step that has not returned after this long [s] is a hang: the watchdog dumps every
 #: thread's stack and ends the process (a numba loop cannot be interrupted). Generous: a step
-#: of these scenes takes ~5 ms, ~50 ms at worst measured on a loaded 2-core machine; the
-#: hangs this catches never returned.
-WATCHDOG = 60.0
+#: of these scenes takes ~2 ms of CPU, ~5 s of wall time at worst measured on a 2-core machine
+#: shared at load 10; the hangs this catches never returned.
+WATCHDOG = 120.0
 
 
-#: Largest fraction of jointed scenes that may end a step with an overlap > 2 cm (the issue's
-#: 1 % is met by the joint-free scenes only; measured on seeds 0–59, 300 steps: 7 of 36
-#: jointed scenes, all a light body jointed to a far heavier one or to the world and pressed
-#: into a wall).
+#: Largest fraction of jointed scenes that may end a step with an overlap > 2 cm. The issue's
+#: 1 % holds for the joint-free ones (0 of 12 on seeds 0–39, 300 steps); with joints the suite
+#: still finds some: 4 of 28 on seeds 0–39, each a light body jointed to a far heavier one (or
+#: held by joints that cannot all hold) and driven into a wall, which passes that visit the
+#: contact, then the joint, cannot stop (a 2e4 mass ratio moves the heavy body 2e4 times too
+#: little a pass). The bound keeps that from growing unseen.
 JOINTED_DEEP = 0.25
 
 
@@ -99,9 +101,8 @@ SLOW_STEPS = 120
 
 @pytest.mark.slow
 def test_1000_random_rigid_scenes():
-    """1 000 scenes of 120 steps (2 s) each: all 300 would take ~25 min on a shared 2-core
-    machine; every failure the suite found before its fixes showed within its first 100 steps
-    (the latest at step 94 of the 1 000 scenes measured with 300). Every 50th is rerun."""
+    """1 000 scenes of 120 steps (2 s) each, every 50th run twice: ~210 s of CPU (measured:
+    0.5 s of CPU per 300-step scene); all 300 steps would take ~8.5 min. Every 50th is rerun."""
     seeds = range(1000, 1000 + SLOW_SCENES)
     _scenes(seeds, SLOW_STEPS)
     _reruns_identical(seeds[::50], SLOW_STEPS)
