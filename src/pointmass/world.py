@@ -26,6 +26,7 @@ from .rigid.particle_body import add_particle_contacts
 from .rigid.shapes import Box, Sphere
 from .rigid.step import integrate_positions, integrate_velocities, spin_error
 from .solver import ImpulseHistory, Solver, SolveStats
+from .solver.body_late import project_late
 from .stability import SpringCheck, jump_check, needs_jump_check
 
 
@@ -230,6 +231,7 @@ class World:
         self.body_contacts = BodyContacts()
         #: The warm start of rigid-body contact points (clear it with ``impulses``).
         self.body_impulses = ImpulseHistory()
+        self._late_contacts = BodyContacts()  # the overlaps after the drift (body_late)
         self._body_rows = None
         #: The warm start of sleeping bodies' contact points, given back when they wake.
         self.sleeping_impulses = sleeping.SleepingImpulses()
@@ -662,6 +664,12 @@ class World:
             packed.give_positions(b, p)
             self.solver.project_bodies(packed, rows, self.body_impulses, self.joints)
             packed.take_positions(b, p)
+        # what the rows did not foresee (an impulse sent a body where no row looked)
+        planes = [g for g in self.contact_generators if isinstance(g, Plane)]
+        exclude = self.joints.pair_keys(b.count) if self.joints else None
+        live = b.awake if self._sleep and not b.awake.all() else None
+        rows.position_passes += project_late(b, planes, exclude, self._late_contacts, dt,
+                                            self.body_contacts.key, live)
         self._body_rows = rows
         return rows
 

@@ -62,7 +62,8 @@ def _particles(seed: int) -> pm.World:
                         damping=0.2))
     a, b = rng.choice(n, 2, replace=False)
     world.add(pm.Rod(int(a), int(b), length=0.5))
-    world.add(pm.Box((-1.2, 0, -1.2), (1.2, 10, 1.2), restitution=float(rng.uniform(0, 1))))
+    world.add(pm.BoxContainer((-1.2, 0, -1.2), (1.2, 10, 1.2),
+                              restitution=float(rng.uniform(0, 1))))
     world.add(pm.SphereCollisions(restitution=float(rng.uniform(0, 1))))
     return world
 

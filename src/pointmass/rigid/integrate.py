@@ -35,12 +35,17 @@ from .scalar import axis_rotate, qexp, qmul, qnormalize, qrot, qrot_inv, solve3
 MAX_ITERATIONS = 30
 #: Relative residual (in angular momentum) at which the iteration stops.
 TOLERANCE = 1e-13
+#: ... and the residual that counts as converged when deciding to split the turn (round-off
+#: keeps some turns from reaching ``TOLERANCE``; their energy is right to ~1e-12).
+CONVERGED = 1e-11
+#: Most times a turn whose Newton did not converge is split again into twice the pieces.
+MAX_HALVINGS = 4
 #: Largest turn [rad] solved in one piece (see ``free_rotation``).
 MAX_TURN = 1.0
-#: Most pieces a step is split into: a turn of more than MAX_PIECES × MAX_TURN rad in one step
-#: (at 60 Hz, 3 840 rad/s) is a blow-up, not a spin; the drift returns NaN for it, which the
-#: stepper reports as a FloatingPointError. (Unbounded, a solver that threw a body to 1e200
-#: rad/s made this loop run for hours: one piece per radian.)
+#: Most pieces one drift is split into: a body that would turn further in one step (over 64 rad,
+#: 3 840 rad/s at 60 Hz; the stepper's cap is π/4 a step, only a solver's impulse gets past it)
+#: is slowed to that first, energy only leaving. Without a cap a body a joint had spun to
+#: 1e58 rad/s asked for 1e56 pieces: the step never returned (issue 30).
 MAX_PIECES = 64
 
 
@@ -63,14 +68,29 @@ def free_rotation(qw, qx, qy, qz, wx, wy, wz, ix, iy, iz, h):
     # Newton converges (to 1e-11 in energy) up to about 1 rad per step and fails past 3; the
     # stepper caps a step at π/4, but a contact solver may spin a body faster before this drift,
     # so a long turn is split into pieces of at most MAX_TURN (L and energy are still kept).
-    turn = h * math.sqrt(wx * wx + wy * wy + wz * wz) / MAX_TURN
-    if not turn <= MAX_PIECES:  # NaN too
-        nan = math.nan
-        return nan, nan, nan, nan, nan, nan, nan
-    pieces = max(1, math.ceil(turn))
-    hp = h / pieces
-    for _ in range(pieces):
-        qw, qx, qy, qz, wx, wy, wz = _turn(qw, qx, qy, qz, wx, wy, wz, ix, iy, iz, hp)
+    turn = h * math.sqrt(wx * wx + wy * wy + wz * wz)
+    if turn > MAX_PIECES * MAX_TURN:  # (also catches inf; NaN falls through to one piece)
+        s = MAX_PIECES * MAX_TURN / turn
+        wx *= s
+        wy *= s
+        wz *= s
+        turn = MAX_PIECES * MAX_TURN
+    pieces = max(1, math.ceil(turn / MAX_TURN)) if turn == turn else 1
+    # A very flat or long body converges more slowly (a 1 kg plate with moments 46:1 at
+    # 0.92 rad a step kept Newton's residual at 1e-4 after 30 iterations, and gained 1e-6 of
+    # its energy a step): a turn whose Newton did not converge is done again in twice as many
+    # pieces, at most ``MAX_HALVINGS`` times (the last answer stands).
+    start = (qw, qx, qy, qz, wx, wy, wz)
+    for _ in range(MAX_HALVINGS + 1):
+        qw, qx, qy, qz, wx, wy, wz = start
+        hp = h / pieces
+        converged = True
+        for _ in range(pieces):
+            qw, qx, qy, qz, wx, wy, wz, ok = _turn(qw, qx, qy, qz, wx, wy, wz, ix, iy, iz, hp)
+            converged = converged and ok
+        if converged:
+            break
+        pieces *= 2
     return qw, qx, qy, qz, wx, wy, wz
 
 
@@ -81,12 +101,16 @@ def _turn(qw, qx, qy, qz, wx, wy, wz, ix, iy, iz, h):
     mx, my, mz = bx / ix, by / iy, bz / iz  # body angular momentum M0
     scale = math.sqrt(mx * mx + my * my + mz * mz)
     ux, uy, uz = bx, by, bz  # the mid-step body angular velocity, first guess ω0
+    converged = False
     for _ in range(MAX_ITERATIONS):
         m1x, m1y, m1z = axis_rotate(ux, uy, uz, -h * math.sqrt(ux * ux + uy * uy + uz * uz),
                                     mx, my, mz)
         hx, hy, hz = 0.5 * (mx + m1x), 0.5 * (my + m1y), 0.5 * (mz + m1z)
         gx, gy, gz = ux / ix - hx, uy / iy - hy, uz / iz - hz  # residual I·u − (M0 + M1)/2
-        if math.sqrt(gx * gx + gy * gy + gz * gz) <= TOLERANCE * scale:
+        residual = math.sqrt(gx * gx + gy * gy + gz * gz)
+        if residual <= CONVERGED * scale:
+            converged = True
+        if residual <= TOLERANCE * scale:
             break
         # Jacobian of the residual: I − (h/2)·skew(M_mid) (rot(−hu)·M ≈ M + h·M × u)
         k = 0.5 * h
@@ -101,4 +125,4 @@ def _turn(qw, qx, qy, qz, wx, wy, wz, ix, iy, iz, h):
     dw, dx, dy, dz = qexp(ux, uy, uz, h)  # body-frame rotation: applied on the right
     nw, nx, ny, nz = qnormalize(*qmul(qw, qx, qy, qz, dw, dx, dy, dz))
     ox, oy, oz = qrot(nw, nx, ny, nz, m1x * ix, m1y * iy, m1z * iz)
-    return nw, nx, ny, nz, ox, oy, oz
+    return nw, nx, ny, nz, ox, oy, oz, converged or scale == 0.0

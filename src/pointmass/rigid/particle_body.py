@@ -156,20 +156,24 @@ class Packed:
         particles.velocity[s] = new
 
     def give_positions(self, bodies, particles) -> None:
-        """Before the position rows: where the bodies and the particles are now."""
+        """Before the position rows: where the bodies and the particles are now, and how the
+        bodies spin."""
         n = bodies.count
         self.position[:n] = bodies.position
         self.position[n:] = particles.position[self.selected]
         self.orientation[:n] = bodies.orientation
+        self.angular_velocity[:n] = bodies.angular_velocity  # the drift turned it
         self.inv_inertia_world[:n] = bodies.inv_inertia_world
         if self.frozen is not None:
             self.inv_inertia_world[:n][self.frozen] = 0.0
 
     def take_positions(self, bodies, particles) -> None:
-        """After the position rows: positions (and the bodies' turns) back."""
+        """After the position rows: positions (and the bodies' turns, with the spin they
+        carried along: ``body_energy.keep_spin``) back."""
         n = bodies.count
         bodies.position[:] = self.position[:n]
         bodies.orientation[:] = self.orientation[:n]
+        bodies.angular_velocity[:] = self.angular_velocity[:n]
         live = slice(None) if self.frozen is None else ~self.frozen
         bodies.inv_inertia_world[live] = self.inv_inertia_world[:n][live]
         particles.position[self.selected] = self.position[n:]

@@ -86,7 +86,8 @@ def spin_error(bodies: Bodies, i: int, dt: float, time: float | None = None) -> 
 @njit(cache=True, nogil=True)
 def integrate_positions(pos, quat, vel, ang, inv_inertia, inv_inertia_world, dt, awake):
     """The drift for every body with ``awake`` (N,) True (a sleeping body stays exactly where
-    it is); returns the first body that is not finite afterwards, or -1."""
+    it is); returns the first body that is not finite afterwards, or -1. (``free_rotation``
+    splits a long or slowly converging turn into pieces, at most 64 × 2⁴ of them.)"""
     bad = -1
     for i in range(pos.shape[0]):
         if not awake[i]:

@@ -5,6 +5,11 @@ bodies it sees may be a packed view (``rigid/particle_body.py``): the bodies, th
 that touch them as bodies of zero inverse inertia, so particle–body points are rows like any
 other; particle–particle contacts stay in the particle stages.
 The velocity half runs before the bodies drift, the position half after (``World._substep``).
+
+Neither half adds kinetic energy: a velocity solve that gained is redone the way that cannot
+(``body_energy``), and the projections move positions only, each turned body keeping its spin
+in its own frame. After both, overlaps that no row foresaw are stopped and projected
+(``body_late``, called by the world).
 """
 
 from __future__ import annotations
@@ -14,7 +19,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..rigid.contacts import BodyContacts
-from . import body_direct, joint_solver
+from . import body_direct, body_energy, joint_solver
 from . import body_manifolds as bm
 from . import body_passes as bp
 from . import body_stages as st
@@ -81,7 +86,24 @@ def solve_velocities(bodies, contacts: BodyContacts, acceleration: np.ndarray,
                      max_passes: int = MAX_VELOCITY_PASSES, joints=None) -> BodyRows:
     """Prepare, warm start and solve the velocities of ``contacts`` (and of ``joints``, a
     ``rigid.joint_set.Joints``, in the same passes); ``acceleration`` (N, 3) is what this
-    substep's forces gave each body [m/s²] (for the resting-contact trick)."""
+    substep's forces gave each body [m/s²] (for the resting-contact trick).
+
+    A solve that would add kinetic energy is redone the way that cannot (``body_energy``)."""
+    b = bodies
+    v0 = b.velocity.copy()
+    w0 = b.angular_velocity.copy()
+    energy0 = body_energy.kinetic_energy(b)
+    rows = _solve(b, contacts, acceleration, history, dt, threshold, max_passes, joints)
+    if body_energy.gained(energy0, body_energy.kinetic_energy(b)):
+        import sys
+        body_energy.redo(sys.modules[__name__], b, contacts, rows, joints, v0, w0, energy0,
+                         max_passes)
+    return rows
+
+
+def _solve(bodies, contacts: BodyContacts, acceleration: np.ndarray, history: ImpulseHistory,
+           dt: float, threshold: float, max_passes: int, joints) -> BodyRows:
+    """The fast solve: warm started, bounce targets, joint bias, the exact solves."""
     c = contacts
     rows = BodyRows.empty(c)
     if joints is not None and len(joints):
@@ -177,7 +199,18 @@ def _project_with_joints(b, rows: BodyRows, joints) -> None:
 
 def project_positions(bodies, rows: BodyRows, history: ImpulseHistory, joints=None) -> None:
     """After the drift: remove penetration beyond the slop (and what opened joints beyond
-    theirs), refresh I⁻¹_world, keep the impulses for the next step."""
+    theirs), refresh I⁻¹_world, keep the impulses for the next step. A body the projection
+    turns keeps its angular velocity in its own frame (``body_energy.keep_spin``), so its
+    kinetic energy is unchanged."""
+    c = rows.contacts
+    if rows.joints is None and c.count == 0:
+        return
+    before = bodies.orientation.copy()
+    _project(bodies, rows, history, joints)
+    body_energy.keep_spin(before, bodies.orientation, bodies.angular_velocity)
+
+
+def _project(bodies, rows: BodyRows, history: ImpulseHistory, joints) -> None:
     c = rows.contacts
     b = bodies
     if rows.joints is not None:
