@@ -85,6 +85,7 @@ class Bodies(RowViews):
     _island: np.ndarray
     _still_position: np.ndarray
     _still_orientation: np.ndarray
+    _serial: np.ndarray
 
     def __init__(self, capacity: int = 16) -> None:
         self._count = 0
