@@ -27,6 +27,9 @@ value given (or set later) applies to both, and a body's contact combines it wit
 
 from __future__ import annotations
 
+import itertools
+from collections.abc import Iterator
+
 import numpy as np
 from numba import njit
 
@@ -123,7 +126,10 @@ class Plane(ContactGenerator):
         self.friction = friction
         self.margin = _margin_value(margin)
         self._sel = _Selection(particles)
-        self._key_base = plane_key_base()
+        self._key_base = plane_key_base(0)  # until a world numbers it (claim_keys)
+
+    def claim_keys(self, serials: Iterator[int]) -> None:
+        self._key_base = plane_key_base(next(serials))
 
     @property
     def restitution(self) -> float:
@@ -151,7 +157,8 @@ class Plane(ContactGenerator):
 
     @property
     def serial(self) -> int:
-        """This plane's number, unique in the process: rigid-body contact keys name it."""
+        """This plane's number, unique in its world (``claim_keys``): rigid-body contact keys
+        name it."""
         return plane_serial(self._key_base)
 
     def validate(self, particles: Particles) -> None:
@@ -216,7 +223,12 @@ class BoxContainer(ContactGenerator):
         friction = None if friction is None else friction_value(friction)
         self.planes = [Plane(n, d, restitution=restitution, particles=particles, margin=margin,
                              friction=friction) for n, d in faces]
+        self.claim_keys(itertools.count())  # its faces apart until a world numbers them
         self.ceiling = ceiling
+
+    def claim_keys(self, serials: Iterator[int]) -> None:
+        for plane in self.planes:
+            plane.claim_keys(serials)
 
     @property
     def restitution(self) -> float:
@@ -266,7 +278,6 @@ class SphereCollisions(ContactGenerator):
         self.friction = friction
         self.margin = _margin_value(margin)
         self._sel = _Selection(particles)
-        self._key_base = plane_key_base()
         self._pairs = PairList()  # candidate pairs kept between steps (sphere_pairs.py)
 
     @property

@@ -13,6 +13,8 @@ directly; generators append many at once.
 
 from __future__ import annotations
 
+from collections.abc import Iterator
+
 import numpy as np
 
 from . import _validate as check
@@ -201,6 +203,11 @@ class ContactGenerator:
 
     def validate(self, particles: Particles) -> None:
         """Check particle indices when added to a world (raise naming the bad parameter)."""
+
+    def claim_keys(self, serials: Iterator[int]) -> None:
+        """Take the contact-key serials this generator needs (``pointmass.keys``) from
+        ``serials``, the world's own numbering: ``World.add`` calls it. A generator whose keys
+        need no serial (or that reports none) takes nothing."""
 
     def segments(self, particles: Particles) -> tuple[np.ndarray, np.ndarray, np.ndarray] | None:
         """Line segments a renderer may draw: (start (K,3), end (K,3), strain (K,)) or None."""

@@ -6,6 +6,10 @@ previous step (``solver/history.py``), so a key must name the same physical cont
 - a sphere pair i < j:             i·2³¹ + j                      (bits 61 and 62 clear)
 - a particle on a plane or wall:   bit 62 | plane serial·2³¹ | i
 - a link (cable, rod):             bit 61 | link-set serial·2³¹ | link index
+
+  (serials are numbered per world: ``World.add`` gives each plane and link set the next of the
+  world's own, so a key depends on nothing outside its world, and a scene built after another
+  in the same process gets the keys it gets in a fresh one)
 - a rigid-body point:              bit 60 | a·2³⁴ | b·2¹⁴ | feature id (< 2¹⁴), with b the
   other body, or bit 59 set and b the plane's serial for a body on a plane (a, b < 2²⁰)
 - a particle on a rigid body:      bit 60 | bit 58 | body·2³⁸ | particle·2³ | feature id (< 8)
@@ -15,8 +19,6 @@ Keys are non-negative int64; -1 means "no key" (no warm start), as custom genera
 """
 
 from __future__ import annotations
-
-import itertools
 
 from numba import njit
 
@@ -33,7 +35,6 @@ _PARTICLE_BODY_BIT = 1 << 58
 #: Particles a particle–body key has room for (35 bits), and its feature ids (3 bits).
 PARTICLE_KEY_LIMIT = 1 << 35
 PARTICLE_FEATURE_LIMIT = 1 << 3
-_serials = itertools.count()
 
 
 @njit(cache=True, inline="always")
@@ -42,14 +43,16 @@ def pair_key(i, j):
     return (i << 31) | j
 
 
-def plane_key_base() -> int:
-    """A fresh base for one plane's contacts; OR the particle index into it."""
-    return _PLANE_BIT | ((next(_serials) & _SERIAL_MASK) << 31)
+def plane_key_base(serial: int) -> int:
+    """The base of the contacts of the plane numbered ``serial`` in its world; OR the particle
+    index into it."""
+    return _PLANE_BIT | ((serial & _SERIAL_MASK) << 31)
 
 
-def link_key_base() -> int:
-    """A fresh base for one set of links; OR the link's index into it."""
-    return _LINK_BIT | ((next(_serials) & _SERIAL_MASK) << 31)
+def link_key_base(serial: int) -> int:
+    """The base of the contacts of the link set numbered ``serial`` in its world; OR the link's
+    index into it."""
+    return _LINK_BIT | ((serial & _SERIAL_MASK) << 31)
 
 
 @njit(cache=True, inline="always")

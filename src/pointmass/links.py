@@ -18,6 +18,8 @@ would go taut within the step), so a taut cable keeps its warm start too.
 
 from __future__ import annotations
 
+from collections.abc import Iterator
+
 import numpy as np
 
 from . import _validate as check
@@ -43,7 +45,10 @@ class _Links(ContactGenerator):
         self.b = self._b_given.astype(np.int64)
         self._name = name
         self.lengths_target = lengths
-        self._key_base = link_key_base()
+        self._key_base = link_key_base(0)  # until a world numbers it (claim_keys)
+
+    def claim_keys(self, serials: Iterator[int]) -> None:
+        self._key_base = link_key_base(next(serials))
 
     @property
     def lengths_target(self) -> np.ndarray:
@@ -172,7 +177,7 @@ class _Anchored:
         self.anchor = check.vec3_array(anchor, "anchor", self.a.shape[0]).copy()
         self._name = name
         self.lengths_target = lengths
-        self._key_base = link_key_base()
+        self._key_base = link_key_base(0)  # until a world numbers it (claim_keys)
 
     def validate(self, particles: Particles) -> None:
         self.a = particles.check_indices(self._a_given, "particles")

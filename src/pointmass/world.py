@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import itertools
 import math
 from dataclasses import dataclass
 from functools import partial
@@ -251,6 +252,8 @@ class World:
         #: do not collide with each other.
         self.joints = Joints()
         self.contact_generators: list[ContactGenerator] = []
+        #: This world's numbering of planes and link sets in contact keys (``keys.py``).
+        self._key_serials = itertools.count()
         self.contacts = ContactBuffer()
         self.solver = Solver()
         #: What each keyed contact needed last step (the solver's warm start); clear it after
@@ -413,6 +416,7 @@ class World:
             self.forces.append(generator)
         elif isinstance(generator, ContactGenerator):
             generator.validate(self.particles)
+            generator.claim_keys(self._key_serials)
             self.contact_generators.append(generator)
         elif isinstance(generator, BodyForceGenerator):
             generator.check_handles(self.bodies)

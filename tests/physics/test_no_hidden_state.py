@@ -109,3 +109,30 @@ def test_scenes_give_the_same_bits_in_any_order_and_in_fresh_processes():
         assert fresh == {n: forward[n] for n in chosen}
     # The comparison is not vacuous: the scenes differ, and some collide or are jointed.
     assert len(set(forward.values())) == len(names)
+
+
+def _keys_of_a_fresh_scene() -> tuple[list[int], list[int], int]:
+    """Contact keys of a scene with two planes, a box of walls and links, after one step."""
+    world = pm.World()
+    world.add(pm.Ground())
+    world.add(pm.Plane((1, 0, 0), -2.0))
+    world.add(pm.BoxContainer((-3, -1, -3), (3, 5, 3)))
+    ends = world.add_particles([(0, 0.05, 0), (0.5, 0.05, 0), (-1.98, 1, 0)], radii=0.1)
+    world.add(pm.Cable(ends[0], ends[1], max_length=0.6))
+    world.add_body(Box((0.3, 0.3, 0.3)), (1, 0.3, 1))
+    world.step(1 / 60)
+    return (sorted(world.contacts.key.tolist()), sorted(world.body_contacts.key.tolist()),
+            pm.Ground().serial)
+
+
+def test_contact_keys_do_not_depend_on_what_the_process_built_before():
+    """Planes and link sets are numbered per world (``World.add``), not from a process-wide
+    counter: the same scene has the same contact keys built first or after 1 000 others, and a
+    plane outside any world has serial 0."""
+    first = _keys_of_a_fresh_scene()
+    for _ in range(1000):
+        pm.Plane((0, 1, 0), 0.0)
+        pm.Cable(0, 1, max_length=1.0)
+    assert _keys_of_a_fresh_scene() == first
+    assert first[0] and first[1]  # the scene has particle and body contacts with keys
+    assert first[2] == 0
