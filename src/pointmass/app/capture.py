@@ -7,7 +7,10 @@ of videos (bullet3 #2929).
 
 Video frames are taken on *simulated* time, one per 1/fps simulated seconds, as ``pointmass
 record`` does: the file plays at true speed whatever the window's frame rate or time scale, and
-a paused simulation adds no frames. Encoding runs in a background thread behind a bounded queue.
+a paused simulation adds no frames. Frames are read back as ``record`` reads them, through
+pixel-buffer objects with two in flight (``Renderer.read_rgb_later``): the window never waits
+for the GPU's copy of the frame it just drew, only maps one copied a due frame earlier.
+Encoding runs in a background thread behind a bounded queue.
 """
 
 from __future__ import annotations
@@ -16,6 +19,7 @@ import math
 import queue
 import threading
 import time
+from collections import deque
 from pathlib import Path
 
 import numpy as np
@@ -53,6 +57,8 @@ class ViewRecorder:
         self.next_time: float | None = None
         self.error: BaseException | None = None
         self._queue: queue.Queue = queue.Queue(maxsize=8)
+        #: How many video frames each read still in flight stands for, oldest first.
+        self._in_flight: deque[int] = deque()
         self._thread = threading.Thread(target=self._run, name="pointmass-view-recorder",
                                         daemon=True)
         self._thread.start()
@@ -75,17 +81,29 @@ class ViewRecorder:
         self.next_time += count / self.fps
         return count
 
-    def offer(self, rgb_reader, sim_time: float) -> None:
-        """Queue the view as many times as the simulated time since the last frame needs;
-        ``rgb_reader()`` is called only when a frame is due."""
+    def offer(self, renderer, sim_time: float) -> None:
+        """Queue the view as many times as the simulated time since the last frame needs. The
+        view is read from ``renderer`` (a ``pointmass.render.Renderer`` that has just drawn it)
+        only when a frame is due, asynchronously: what comes back is the view of the previous
+        due frame, queued for as many frames as that one stood for."""
         count = self.frames_due(sim_time)
         if count:
-            rgb = rgb_reader().copy()
-            for _ in range(count):
-                self._queue.put(rgb)
+            self._in_flight.append(count)
+            rgb = renderer.read_rgb_later()
+            if rgb is not None:
+                self._put(rgb, self._in_flight.popleft())
 
-    def close(self) -> Path:
-        """Finish the file (encodes what is queued)."""
+    def _put(self, rgb, count: int) -> None:
+        for _ in range(count):
+            self._queue.put(rgb)
+
+    def close(self, renderer=None) -> Path:
+        """Finish the file: the reads still in flight on ``renderer`` (whose GL context must
+        be current), then what is queued."""
+        if renderer is not None:
+            for rgb in renderer.read_pending():
+                self._put(rgb, self._in_flight.popleft())
+        self._in_flight.clear()
         self._queue.put(_STOP)
         self._thread.join()
         self.writer.close()

@@ -299,7 +299,7 @@ class Viewer:
         if self._running is not None:
             glwait.finish()                 # rasterize with the GIL free for the worker
         if self.recorder is not None:
-            self.recorder.offer(r.read_rgb, frame.time)
+            self.recorder.offer(r, frame.time)
             if self.recorder.error is not None:
                 self.stop_recording()
         screen.use()
@@ -478,7 +478,7 @@ class Viewer:
         recorder, self.recorder = self.recorder, None
         if recorder is None:
             return None
-        path = recorder.close()
+        path = recorder.close(self.renderer)
         self._say(f"saved {path}" if recorder.error is None
                   else f"recording failed: {recorder.error}")
         return path
