@@ -6,8 +6,9 @@
 elongation (a cable may go slack). Each scene is run swinging (released where gravity turns it)
 and hanging straight down at rest (the issue's words can be read either way).
 
-Before (measured): the swinging 1000 kg scene blew apart (rod 11 m long after 80 steps, 3471 %);
-the chains released level at 1000 : 1 reached 1200 % (10 links) and 1000 % (50 links). The
+Before (measured, main 59c48e3): the swinging 1000 kg scene blew apart (the issue: rod 11 m long
+after 80 steps, 3471 %); the chains released level at 1000 : 1 reached 2790 % (10 links) and
+513 % (50 links) over the 100 steps (``benchmarks/bench_links.py``). The
 cause: the re-measured projection's Newton step threw the light particle between two nearly
 aligned loaded links sideways, and velocities were left unheld along the links' turned lines
 (``solver._remeasured``, ``remeasure.stiff_metric``, ``solver._link_velocities``)."""
