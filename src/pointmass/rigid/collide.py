@@ -27,6 +27,7 @@ from .manifold import MAX_POINTS
 from .narrow_box import box_plane
 from .narrow_sphere import sphere_box, sphere_plane, sphere_sphere
 from .shapes import BOX, SPHERE
+from .sweep import box_box_enter, sphere_box_enter, sphere_sphere_enter
 
 #: Gap [m] below which a pair reports speculative points, besides what the bodies can travel
 #: in the step (the broadphase's ``reach``, which already covers any approach at the speeds
@@ -61,42 +62,94 @@ def _emit(count, a, b, pa, pb, normal, points, depth, ids, n_points, mu, e, plan
 
 
 @njit(cache=True, nogil=True)
-def pair_contacts(pos, quat, shape, size, friction, restitution, first, second, reach, margin,
-                  out_a, out_b, out_n, out_ra, out_rb, out_d, out_mu, out_e, out_key):
+def _spin_reach(ang, shape, size, i, dt):
+    """How far [m] body i's spin can carry a point of its shape in ``dt``."""
+    radius = size[i, 0] if shape[i] == SPHERE else math.sqrt(
+        size[i, 0] ** 2 + size[i, 1] ** 2 + size[i, 2] ** 2)
+    return math.sqrt(ang[i, 0] ** 2 + ang[i, 1] ** 2 + ang[i, 2] ** 2) * radius * dt
+
+
+@njit(cache=True, nogil=True)
+def _narrow(si, sj, pa, qa, ha, pb, qb, hb, m, normal, points, depth, ids, fw, iw):
+    """The kernel for a sphere–sphere, sphere–box (sphere A) or box–box pair."""
+    if si == SPHERE and sj == SPHERE:
+        return sphere_sphere(pa, ha[0], pb, hb[0], m, normal, points, depth, ids)
+    if si == SPHERE:
+        return sphere_box(pa, ha[0], pb, qb, hb, m, normal, points, depth, ids)
+    return box_box_into(pa, qa, ha, pb, qb, hb, m, normal, points, depth, ids, fw, iw)
+
+
+@njit(cache=True, nogil=True)
+def _enter(si, sj, pa, qa, ha, pb, qb, hb, move, m, fw):
+    """The fraction of the step at which the pair first comes within ``m`` (``sweep``)."""
+    if si == SPHERE and sj == SPHERE:
+        return sphere_sphere_enter(pa, ha[0], pb, hb[0], move, m)
+    if si == SPHERE:
+        return sphere_box_enter(pa, ha[0], pb, qb, hb, move, m)
+    return box_box_enter(pa, qa, ha, pb, qb, hb, move, m, fw)
+
+
+@njit(cache=True, nogil=True)
+def pair_contacts(pos, quat, vel, ang, shape, size, inv_mass, friction, restitution, first,
+                  second, reach, margin, dt, out_a, out_b, out_n, out_ra, out_rb, out_d, out_mu,
+                  out_e, out_key):
     """Narrow phase over the broadphase pairs. A sphere is always body A of a sphere–box pair
     (the kernel's convention), so a pair keeps its orientation and its keys from step to
-    step. Returns the rows written."""
+    step. Returns the rows written.
+
+    A pair within ``margin`` (plus what the spins can carry, ``_spin_reach``) now is taken at
+    its pose now, with the margin grown by the bodies' whole reach, as the broadphase found
+    it. A pair that comes within it later in the step (moving at its step-start velocities,
+    ``sweep``) is taken at that pose, where its normal and points are the ones it will touch
+    by; each point's gap is then carried back to the step's start along that normal, and the
+    point moves back with the lighter body (the one the row turns), so the row closes the pair
+    by its gap along the right normal and no more. A pair that stays apart all step gets no
+    row."""
     normal = np.zeros(3)
     points = np.zeros((MAX_POINTS, 3))
     depth = np.zeros(MAX_POINTS)
     ids = np.zeros(MAX_POINTS, np.int64)
     fw = np.empty(WORK_FLOATS)
     iw = np.empty(WORK_INTS, np.int64)
+    move = np.empty(3)
+    at_a = np.empty(3)
+    at_b = np.empty(3)
     count = 0
     for p in range(first.shape[0]):
         i = first[p]
         j = second[p]
-        m = margin + reach[i] + reach[j]
         si = shape[i]
         sj = shape[j]
-        if si == SPHERE and sj == SPHERE:
-            a, b = i, j
-            got = sphere_sphere(pos[a], size[a, 0], pos[b], size[b, 0], m, normal, points,
-                                depth, ids)
-        elif si == SPHERE and sj == BOX:
-            a, b = i, j
-            got = sphere_box(pos[a], size[a, 0], pos[b], quat[b], size[b], m, normal, points,
-                             depth, ids)
-        elif si == BOX and sj == SPHERE:
-            a, b = j, i
-            got = sphere_box(pos[a], size[a, 0], pos[b], quat[b], size[b], m, normal, points,
-                             depth, ids)
-        elif si == BOX and sj == BOX:
-            a, b = i, j
-            got = box_box_into(pos[a], quat[a], size[a], pos[b], quat[b], size[b], m, normal,
-                               points, depth, ids, fw, iw)
-        else:
+        if (si != SPHERE and si != BOX) or (sj != SPHERE and sj != BOX):
             continue
+        a, b = (j, i) if si == BOX and sj == SPHERE else (i, j)
+        sa, sb = shape[a], shape[b]
+        m = margin + _spin_reach(ang, shape, size, a, dt) + _spin_reach(ang, shape, size, b, dt)
+        for k in range(3):
+            move[k] = (vel[a, k] - vel[b, k]) * dt
+        u = _enter(sa, sb, pos[a], quat[a], size[a], pos[b], quat[b], size[b], move, m, fw)
+        if u < 0.0:
+            continue
+        if u == 0.0:
+            got = _narrow(sa, sb, pos[a], quat[a], size[a], pos[b], quat[b], size[b],
+                          margin + reach[i] + reach[j], normal, points, depth, ids, fw, iw)
+        else:
+            for k in range(3):
+                at_a[k] = pos[a, k] + u * dt * vel[a, k]
+                at_b[k] = pos[b, k] + u * dt * vel[b, k]
+            # the margin from here: m plus what is left of the travel, so every feature that
+            # can touch in the rest of the step is a row (a box that meets the wall with an
+            # edge spins onto its face within the step; with only the edge's row, the spin
+            # the row gives carries the face through); and m again, for rounding at the touch
+            rest = (1.0 - u) * math.sqrt(move[0] ** 2 + move[1] ** 2 + move[2] ** 2)
+            got = _narrow(sa, sb, at_a, quat[a], size[a], at_b, quat[b], size[b],
+                          2.0 * m + rest, normal, points, depth, ids, fw, iw)
+            closing = u * (move[0] * normal[0] + move[1] * normal[1] + move[2] * normal[2])
+            wa = inv_mass[a] / (inv_mass[a] + inv_mass[b])
+            for q in range(got):
+                depth[q] += closing
+                for k in range(3):
+                    points[q, k] -= u * dt * (wa * vel[a, k] + (1.0 - wa) * vel[b, k])
         if got == 0:
             continue
         mu = math.sqrt(friction[a] * friction[b])
@@ -176,8 +229,9 @@ def generate(bodies, planes, dt: float, contacts: BodyContacts,
     contacts.resize(MAX_POINTS * (first.shape[0] + b.count * n_planes))
     c = contacts
     out = (c.a, c.b, c.normal, c.r_a, c.r_b, c.depth, c.friction, c.restitution, c.key)
-    count = pair_contacts(b.position, b.orientation, b.shape, b.size, b.friction, b.restitution,
-                          first, second, reach, margin, *out)
+    count = pair_contacts(b.position, b.orientation, b.velocity, b.angular_velocity, b.shape,
+                          b.size, b.inv_mass, b.friction, b.restitution, first, second, reach,
+                          margin, dt, *out)
     if n_planes:
         plane_n = np.array([p.normal for p in planes], dtype=np.float64).reshape(n_planes, 3)
         plane_d = np.array([p.offset for p in planes], dtype=np.float64)

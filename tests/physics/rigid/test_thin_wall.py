@@ -91,7 +91,7 @@ CASES = ([("sphere", "aligned")] + [("box", r) for r in ("aligned", "rotated", "
 @pytest.mark.parametrize(("shape", "reading"), CASES)
 def test_no_shot_passes_through_a_thin_wall(shape, reading):
     counts = {(a, s): passes(shape, reading, a, s) for a in ANGLES for s in SPEEDS}
-    assert counts == {key: 0 for key in counts}
+    assert counts == dict.fromkeys(counts, 0)
 
 
 if __name__ == "__main__":
