@@ -97,14 +97,20 @@ def pair_contacts(pos, quat, vel, ang, shape, size, inv_mass, friction, restitut
     (the kernel's convention), so a pair keeps its orientation and its keys from step to
     step. Returns the rows written.
 
-    A pair within ``margin`` (plus what the spins can carry, ``_spin_reach``) now is taken at
-    its pose now, with the margin grown by the bodies' whole reach, as the broadphase found
-    it. A pair that comes within it later in the step (moving at its step-start velocities,
-    ``sweep``) is taken at that pose, where its normal and points are the ones it will touch
-    by; each point's gap is then carried back to the step's start along that normal, and the
-    point moves back with the lighter body (the one the row turns), so the row closes the pair
-    by its gap along the right normal and no more. A pair that stays apart all step gets no
-    row."""
+    A pair with a point within ``margin`` (plus what the spins can carry, ``_spin_reach``)
+    now is taken at its pose now, with the margin grown by the bodies' whole reach, as the
+    broadphase found it. Any other pair is swept (``sweep``: each body at its step-start
+    velocity): one that comes within the margin at a fraction u of the step is taken at that
+    pose, where its normal and points are the ones it will touch by; each point's gap is
+    carried back to the step's start along that normal (gap + closing speed·u·dt), and the
+    point moves back with the bodies (weighted by inverse mass: with the body that moves for
+    a static one), so the row closes the pair by its gap along the right normal and no more.
+    A pair that stays apart all step gets no row.
+
+    What the solver must do with a row of depth d < 0 (a gap): let its bodies close along its
+    normal by at most −d within the step (``body_stages.prepare``'s target gap/dt; Box2D v3's
+    soft step the same with s·inv_h), and follow the point from the body-fixed anchors
+    r_a, r_b, which coincide at the step's start."""
     normal = np.zeros(3)
     points = np.zeros((MAX_POINTS, 3))
     depth = np.zeros(MAX_POINTS)
@@ -125,31 +131,40 @@ def pair_contacts(pos, quat, vel, ang, shape, size, inv_mass, friction, restitut
         a, b = (j, i) if si == BOX and sj == SPHERE else (i, j)
         sa, sb = shape[a], shape[b]
         m = margin + _spin_reach(ang, shape, size, a, dt) + _spin_reach(ang, shape, size, b, dt)
-        for k in range(3):
-            move[k] = (vel[a, k] - vel[b, k]) * dt
-        u = _enter(sa, sb, pos[a], quat[a], size[a], pos[b], quat[b], size[b], move, m, fw)
-        if u < 0.0:
-            continue
-        if u == 0.0:
-            got = _narrow(sa, sb, pos[a], quat[a], size[a], pos[b], quat[b], size[b],
-                          margin + reach[i] + reach[j], normal, points, depth, ids, fw, iw)
-        else:
+        # the pose now first (with the broadphase's margin, as a pair that can only close by
+        # its gap has always been taken): a point within m of touching now says the pair is
+        # touching, and resting pairs, most of a pile's, cost one narrow phase as before
+        got = _narrow(sa, sb, pos[a], quat[a], size[a], pos[b], quat[b], size[b],
+                      margin + reach[i] + reach[j], normal, points, depth, ids, fw, iw)
+        touching = False
+        for q in range(got):
+            touching = touching or depth[q] >= -m
+        if not touching:
             for k in range(3):
-                at_a[k] = pos[a, k] + u * dt * vel[a, k]
-                at_b[k] = pos[b, k] + u * dt * vel[b, k]
-            # the margin from here: m plus what is left of the travel, so every feature that
-            # can touch in the rest of the step is a row (a box that meets the wall with an
-            # edge spins onto its face within the step; with only the edge's row, the spin
-            # the row gives carries the face through); and m again, for rounding at the touch
-            rest = (1.0 - u) * math.sqrt(move[0] ** 2 + move[1] ** 2 + move[2] ** 2)
-            got = _narrow(sa, sb, at_a, quat[a], size[a], at_b, quat[b], size[b],
-                          2.0 * m + rest, normal, points, depth, ids, fw, iw)
-            closing = u * (move[0] * normal[0] + move[1] * normal[1] + move[2] * normal[2])
-            wa = inv_mass[a] / (inv_mass[a] + inv_mass[b])
-            for q in range(got):
-                depth[q] += closing
+                move[k] = (vel[a, k] - vel[b, k]) * dt
+            u = _enter(sa, sb, pos[a], quat[a], size[a], pos[b], quat[b], size[b], move, m,
+                       fw)
+            if u < 0.0:
+                continue
+            if u > 0.0:
                 for k in range(3):
-                    points[q, k] -= u * dt * (wa * vel[a, k] + (1.0 - wa) * vel[b, k])
+                    at_a[k] = pos[a, k] + u * dt * vel[a, k]
+                    at_b[k] = pos[b, k] + u * dt * vel[b, k]
+                # the margin from here: m plus what is left of the travel, so every feature
+                # that can touch in the rest of the step is a row (a box that meets the wall
+                # with an edge spins onto its face within the step; with only the edge's row,
+                # the spin that row gives carries the face through); and m again, for
+                # rounding at the touch
+                rest = (1.0 - u) * math.sqrt(move[0] ** 2 + move[1] ** 2 + move[2] ** 2)
+                got = _narrow(sa, sb, at_a, quat[a], size[a], at_b, quat[b], size[b],
+                              2.0 * m + rest, normal, points, depth, ids, fw, iw)
+                closing = u * (move[0] * normal[0] + move[1] * normal[1]
+                               + move[2] * normal[2])
+                wa = inv_mass[a] / (inv_mass[a] + inv_mass[b])
+                for q in range(got):
+                    depth[q] += closing
+                    for k in range(3):
+                        points[q, k] -= u * dt * (wa * vel[a, k] + (1.0 - wa) * vel[b, k])
         if got == 0:
             continue
         mu = math.sqrt(friction[a] * friction[b])
