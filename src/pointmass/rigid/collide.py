@@ -3,9 +3,12 @@ kernels into ``BodyContacts``.
 
 Each pair's margin is ``margin`` plus how far its two bodies can travel this step (the
 broadphase's ``reach``), so a point that can close within the step is already a (speculative)
-row, which the solver lets close only by its gap: no tunnelling at moderate speeds, no
-contact that appears only once it is deep. Planes are the particles' ``Plane``/``Ground``
-(n·x = offset, the solid on the −n side); bodies meet every plane of the world.
+row, which the solver lets close only by its gap: no contact that appears only once it is
+deep. A pair not touching now is narrow-phased at the pose where it first comes within the
+margin in the step (``sweep``), so its row holds it along the normal it will touch by: a
+fast box does not pass a thin wall at any angle, and a pair that flies past gets no row.
+Planes are the particles' ``Plane``/``Ground`` (n·x = offset, the solid on the −n side);
+bodies meet every plane of the world.
 
 Materials: μ = √(μa·μb), e = max(ea, eb) (a plane counts as a surface with its own μ and e);
 a plane whose μ or e was never set (``Plane.body_friction``/``body_restitution`` None, passed
@@ -20,7 +23,7 @@ import numpy as np
 from numba import njit
 
 from ..keys import BODY_KEY_LIMIT, body_pair_key, body_plane_key
-from .box_box import WORK_FLOATS, WORK_INTS, box_box_into
+from .box_box import APART, WORK_FLOATS, WORK_INTS, box_box_into
 from .broadphase import find_pairs
 from .contacts import BodyContacts
 from .manifold import MAX_POINTS
@@ -61,15 +64,7 @@ def _emit(count, a, b, pa, pb, normal, points, depth, ids, n_points, mu, e, plan
     return count
 
 
-@njit(cache=True, nogil=True)
-def _spin_reach(ang, shape, size, i, dt):
-    """How far [m] body i's spin can carry a point of its shape in ``dt``."""
-    radius = size[i, 0] if shape[i] == SPHERE else math.sqrt(
-        size[i, 0] ** 2 + size[i, 1] ** 2 + size[i, 2] ** 2)
-    return math.sqrt(ang[i, 0] ** 2 + ang[i, 1] ** 2 + ang[i, 2] ** 2) * radius * dt
-
-
-@njit(cache=True, nogil=True)
+@njit(cache=True, nogil=True, inline="always")
 def _narrow(si, sj, pa, qa, ha, pb, qb, hb, m, normal, points, depth, ids, fw, iw):
     """The kernel for a sphere–sphere, sphere–box (sphere A) or box–box pair."""
     if si == SPHERE and sj == SPHERE:
@@ -79,7 +74,7 @@ def _narrow(si, sj, pa, qa, ha, pb, qb, hb, m, normal, points, depth, ids, fw, i
     return box_box_into(pa, qa, ha, pb, qb, hb, m, normal, points, depth, ids, fw, iw)
 
 
-@njit(cache=True, nogil=True)
+@njit(cache=True, nogil=True, inline="always")
 def _enter(si, sj, pa, qa, ha, pb, qb, hb, move, m, fw):
     """The fraction of the step at which the pair first comes within ``m`` (``sweep``)."""
     if si == SPHERE and sj == SPHERE:
@@ -90,21 +85,22 @@ def _enter(si, sj, pa, qa, ha, pb, qb, hb, move, m, fw):
 
 
 @njit(cache=True, nogil=True)
-def pair_contacts(pos, quat, vel, ang, shape, size, inv_mass, friction, restitution, first,
+def pair_contacts(pos, quat, vel, turn, shape, size, inv_mass, friction, restitution, first,
                   second, reach, margin, dt, out_a, out_b, out_n, out_ra, out_rb, out_d, out_mu,
                   out_e, out_key):
     """Narrow phase over the broadphase pairs. A sphere is always body A of a sphere–box pair
     (the kernel's convention), so a pair keeps its orientation and its keys from step to
     step. Returns the rows written.
 
-    A pair with a point within ``margin`` (plus what the spins can carry, ``_spin_reach``)
-    now is taken at its pose now, with the margin grown by the bodies' whole reach, as the
-    broadphase found it. Any other pair is swept (``sweep``: each body at its step-start
-    velocity): one that comes within the margin at a fraction u of the step is taken at that
-    pose, where its normal and points are the ones it will touch by; each point's gap is
-    carried back to the step's start along that normal (gap + closing speed·u·dt), and the
-    point moves back with the bodies (weighted by inverse mass: with the body that moves for
-    a static one), so the row closes the pair by its gap along the right normal and no more.
+    A pair with a point within ``margin`` plus ``turn`` of both (how far each body's spin can
+    carry a point in the step, ``spin_reach``) now is taken at its pose now, with the margin
+    grown by the bodies' whole reach, as the broadphase found it. Any other pair is swept
+    (``sweep``: each body at its step-start velocity): one that comes within the margin at a
+    fraction u of the step is taken at that pose, where its normal and points are the ones it
+    will touch by; each point's gap is carried back to the step's start along that normal
+    (gap + closing speed·u·dt), and the point moves back with the bodies (weighted by inverse
+    mass: with the moving body against a static one), so the row closes the pair by its gap
+    along the right normal and no more.
     A pair that stays apart all step gets no row.
 
     What the solver must do with a row of depth d < 0 (a gap): let its bodies close along its
@@ -130,12 +126,18 @@ def pair_contacts(pos, quat, vel, ang, shape, size, inv_mass, friction, restitut
             continue
         a, b = (j, i) if si == BOX and sj == SPHERE else (i, j)
         sa, sb = shape[a], shape[b]
-        m = margin + _spin_reach(ang, shape, size, a, dt) + _spin_reach(ang, shape, size, b, dt)
+        m = margin + turn[a] + turn[b]
         # the pose now first (with the broadphase's margin, as a pair that can only close by
         # its gap has always been taken): a point within m of touching now says the pair is
         # touching, and resting pairs, most of a pile's, cost one narrow phase as before
-        got = _narrow(sa, sb, pos[a], quat[a], size[a], pos[b], quat[b], size[b],
-                      margin + reach[i] + reach[j], normal, points, depth, ids, fw, iw)
+        m_now = margin + reach[i] + reach[j]
+        got = _narrow(sa, sb, pos[a], quat[a], size[a], pos[b], quat[b], size[b], m_now,
+                      normal, points, depth, ids, fw, iw)
+        # none: farther than m_now on an axis (or, for a sphere, at all), which is m plus
+        # at least their relative travel, so they stay apart all step; a box pair that no
+        # axis showed apart (its clipping kept no point) is swept
+        if got == 0 and (sa == SPHERE or sb == SPHERE or fw[APART] > m_now):
+            continue
         touching = False
         for q in range(got):
             touching = touching or depth[q] >= -m
@@ -218,6 +220,13 @@ def plane_contacts(pos, quat, shape, size, inv_mass, friction, restitution, reac
     return count
 
 
+def spin_reach(bodies, dt: float) -> np.ndarray:
+    """(N,) how far [m] each body's spin can carry a point of its shape in ``dt``."""
+    b = bodies
+    radius = np.where(b.shape == SPHERE, b.size[:, 0], np.sqrt((b.size ** 2).sum(axis=1)))
+    return np.sqrt((b.angular_velocity ** 2).sum(axis=1)) * radius * dt
+
+
 def generate(bodies, planes, dt: float, contacts: BodyContacts,
              margin: float = SPECULATIVE_MARGIN, active: np.ndarray | None = None,
              exclude: np.ndarray | None = None) -> None:
@@ -244,7 +253,8 @@ def generate(bodies, planes, dt: float, contacts: BodyContacts,
     contacts.resize(MAX_POINTS * (first.shape[0] + b.count * n_planes))
     c = contacts
     out = (c.a, c.b, c.normal, c.r_a, c.r_b, c.depth, c.friction, c.restitution, c.key)
-    count = pair_contacts(b.position, b.orientation, b.velocity, b.angular_velocity, b.shape,
+    turn = spin_reach(b, dt)
+    count = pair_contacts(b.position, b.orientation, b.velocity, turn, b.shape,
                           b.size, b.inv_mass, b.friction, b.restitution, first, second, reach,
                           margin, dt, *out)
     if n_planes:
