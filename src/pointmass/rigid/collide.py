@@ -162,7 +162,8 @@ def pair_contacts(pos, quat, vel, turn, shape, size, inv_mass, friction, restitu
                               2.0 * m + rest, normal, points, depth, ids, fw, iw)
                 closing = u * (move[0] * normal[0] + move[1] * normal[1]
                                + move[2] * normal[2])
-                wa = inv_mass[a] / (inv_mass[a] + inv_mass[b])
+                w = inv_mass[a] + inv_mass[b]  # > 0: the broadphase drops static pairs
+                wa = inv_mass[a] / w if w > 0.0 else 0.5
                 for q in range(got):
                     depth[q] += closing
                     for k in range(3):
