@@ -35,9 +35,10 @@ from numba import njit
 from .narrow_box import box_axes_into
 from .scalar import qrot_inv
 
-#: Newton steps of the sphere–box time: each lands before the touch, and the third is within
-#: 1e-9 of it for the thin-wall shots (measured); a pair not yet within the margin after them
-#: is taken at that (earlier) pose, where the narrow phase still finds it or finds nothing.
+#: Newton steps of the sphere–box time: each lands before the touch (one is exact on a face);
+#: after four, the gap was at most 0.12 mm above the margin over 20 000 random shots of the
+#: thin-wall sphere at the wall (measured), and the narrow phase at that pose runs with the
+#: margin plus the rest of the travel (``collide.pair_contacts``), so it finds the pair.
 SPHERE_BOX_STEPS = 4
 
 
