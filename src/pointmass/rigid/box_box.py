@@ -44,6 +44,10 @@ PARALLEL = 1e-6
 #: pit's narrow phase spent most of its 0.7 µs a pair in the allocator).
 WORK_FLOATS = 128
 WORK_INTS = 48
+#: Where ``box_box_into`` leaves, in ``fw``, the separation of the axis that showed the pair
+#: apart (> margin), or −inf when no axis did (its 0 then means the clipping kept no point): a
+#: pair loop skips what an axis already rules out (``collide.pair_contacts``).
+APART = WORK_FLOATS - 1
 
 
 @njit(cache=True, nogil=True)
@@ -69,6 +73,7 @@ def box_box(pa, qa, ha, pb, qb, hb, margin, normal, points, depth, ids):
 def box_box_into(pa, qa, ha, pb, qb, hb, margin, normal, points, depth, ids, fw, iw):
     """``box_box`` with its temporaries in the scratch arrays ``fw`` (``WORK_FLOATS``,) and
     ``iw`` (``WORK_INTS``,), which a pair loop allocates once."""
+    fw[APART] = -math.inf
     a = fw[0:9].reshape((3, 3))
     b = fw[9:18].reshape((3, 3))
     box_axes_into(qa, a)
@@ -82,11 +87,13 @@ def box_box_into(pa, qa, ha, pb, qb, hb, margin, normal, points, depth, ids, fw,
     for k in range(3):
         s = abs(_dot(d, a[k])) - ha[k] - _project(b, hb, a[k])
         if s > margin:
+            fw[APART] = s
             return 0
         if s > sep_a:
             best_a, sep_a = k, s
         s = abs(_dot(d, b[k])) - hb[k] - _project(a, ha, b[k])
         if s > margin:
+            fw[APART] = s
             return 0
         if s > sep_b:
             best_b, sep_b = k, s
@@ -105,6 +112,7 @@ def box_box_into(pa, qa, ha, pb, qb, hb, margin, normal, points, depth, ids, fw,
                 n[k] /= length
             s = abs(_dot(d, n)) - _project(a, ha, n) - _project(b, hb, n)
             if s > margin:
+                fw[APART] = s
                 return 0
             if s > sep_e:
                 edge_i, edge_j, sep_e = i, j, s

@@ -3,9 +3,12 @@ kernels into ``BodyContacts``.
 
 Each pair's margin is ``margin`` plus how far its two bodies can travel this step (the
 broadphase's ``reach``), so a point that can close within the step is already a (speculative)
-row, which the solver lets close only by its gap: no tunnelling at moderate speeds, no
-contact that appears only once it is deep. Planes are the particles' ``Plane``/``Ground``
-(n·x = offset, the solid on the −n side); bodies meet every plane of the world.
+row, which the solver lets close only by its gap: no contact that appears only once it is
+deep. A pair not touching now is narrow-phased at the pose where it first comes within the
+margin in the step (``sweep``), so its row holds it along the normal it will touch by: a
+fast box does not pass a thin wall at any angle, and a pair that flies past gets no row.
+Planes are the particles' ``Plane``/``Ground`` (n·x = offset, the solid on the −n side);
+bodies meet every plane of the world.
 
 Materials: μ = √(μa·μb), e = max(ea, eb) (a plane counts as a surface with its own μ and e);
 a plane whose μ or e was never set (``Plane.body_friction``/``body_restitution`` None, passed
@@ -20,13 +23,14 @@ import numpy as np
 from numba import njit
 
 from ..keys import BODY_KEY_LIMIT, body_pair_key, body_plane_key
-from .box_box import WORK_FLOATS, WORK_INTS, box_box_into
+from .box_box import APART, WORK_FLOATS, WORK_INTS, box_box_into
 from .broadphase import find_pairs
 from .contacts import BodyContacts
 from .manifold import MAX_POINTS
 from .narrow_box import box_plane
 from .narrow_sphere import sphere_box, sphere_plane, sphere_sphere
 from .shapes import BOX, SPHERE
+from .sweep import box_box_enter, sphere_box_enter, sphere_sphere_enter
 
 #: Gap [m] below which a pair reports speculative points, besides what the bodies can travel
 #: in the step (the broadphase's ``reach``, which already covers any approach at the speeds
@@ -60,43 +64,110 @@ def _emit(count, a, b, pa, pb, normal, points, depth, ids, n_points, mu, e, plan
     return count
 
 
+@njit(cache=True, nogil=True, inline="always")
+def _narrow(si, sj, pa, qa, ha, pb, qb, hb, m, normal, points, depth, ids, fw, iw):
+    """The kernel for a sphere–sphere, sphere–box (sphere A) or box–box pair."""
+    if si == SPHERE and sj == SPHERE:
+        return sphere_sphere(pa, ha[0], pb, hb[0], m, normal, points, depth, ids)
+    if si == SPHERE:
+        return sphere_box(pa, ha[0], pb, qb, hb, m, normal, points, depth, ids)
+    return box_box_into(pa, qa, ha, pb, qb, hb, m, normal, points, depth, ids, fw, iw)
+
+
+@njit(cache=True, nogil=True, inline="always")
+def _enter(si, sj, pa, qa, ha, pb, qb, hb, move, m, fw):
+    """The fraction of the step at which the pair first comes within ``m`` (``sweep``)."""
+    if si == SPHERE and sj == SPHERE:
+        return sphere_sphere_enter(pa, ha[0], pb, hb[0], move, m)
+    if si == SPHERE:
+        return sphere_box_enter(pa, ha[0], pb, qb, hb, move, m)
+    return box_box_enter(pa, qa, ha, pb, qb, hb, move, m, fw)
+
+
 @njit(cache=True, nogil=True)
-def pair_contacts(pos, quat, shape, size, friction, restitution, first, second, reach, margin,
-                  out_a, out_b, out_n, out_ra, out_rb, out_d, out_mu, out_e, out_key):
+def pair_contacts(pos, quat, vel, turn, shape, size, inv_mass, friction, restitution, first,
+                  second, reach, margin, dt, out_a, out_b, out_n, out_ra, out_rb, out_d, out_mu,
+                  out_e, out_key):
     """Narrow phase over the broadphase pairs. A sphere is always body A of a sphere–box pair
     (the kernel's convention), so a pair keeps its orientation and its keys from step to
-    step. Returns the rows written."""
+    step. Returns the rows written.
+
+    A pair with a point within ``margin`` plus ``turn`` of both (how far each body's spin can
+    carry a point in the step, ``spin_reach``) now is taken at its pose now, with the margin
+    grown by the bodies' whole reach, as the broadphase found it. Any other pair is swept
+    (``sweep``: each body at its step-start velocity): one that comes within the margin at a
+    fraction u of the step is taken at that pose, where its normal and points are the ones it
+    will touch by; each point's gap is carried back to the step's start along that normal
+    (gap + closing speed·u·dt), and the point moves back with the bodies (weighted by inverse
+    mass: with the moving body against a static one), so the row closes the pair by its gap
+    along the right normal and no more.
+    A pair that stays apart all step gets no row.
+
+    What the solver must do with a row of depth d < 0 (a gap): let its bodies close along its
+    normal by at most −d within the step (``body_stages.prepare``'s target gap/dt; Box2D v3's
+    soft step the same with s·inv_h), and follow the point from the body-fixed anchors
+    r_a, r_b, which coincide at the step's start."""
     normal = np.zeros(3)
     points = np.zeros((MAX_POINTS, 3))
     depth = np.zeros(MAX_POINTS)
     ids = np.zeros(MAX_POINTS, np.int64)
     fw = np.empty(WORK_FLOATS)
     iw = np.empty(WORK_INTS, np.int64)
+    move = np.empty(3)
+    at_a = np.empty(3)
+    at_b = np.empty(3)
     count = 0
     for p in range(first.shape[0]):
         i = first[p]
         j = second[p]
-        m = margin + reach[i] + reach[j]
         si = shape[i]
         sj = shape[j]
-        if si == SPHERE and sj == SPHERE:
-            a, b = i, j
-            got = sphere_sphere(pos[a], size[a, 0], pos[b], size[b, 0], m, normal, points,
-                                depth, ids)
-        elif si == SPHERE and sj == BOX:
-            a, b = i, j
-            got = sphere_box(pos[a], size[a, 0], pos[b], quat[b], size[b], m, normal, points,
-                             depth, ids)
-        elif si == BOX and sj == SPHERE:
-            a, b = j, i
-            got = sphere_box(pos[a], size[a, 0], pos[b], quat[b], size[b], m, normal, points,
-                             depth, ids)
-        elif si == BOX and sj == BOX:
-            a, b = i, j
-            got = box_box_into(pos[a], quat[a], size[a], pos[b], quat[b], size[b], m, normal,
-                               points, depth, ids, fw, iw)
-        else:
+        if (si != SPHERE and si != BOX) or (sj != SPHERE and sj != BOX):
             continue
+        a, b = (j, i) if si == BOX and sj == SPHERE else (i, j)
+        sa, sb = shape[a], shape[b]
+        m = margin + turn[a] + turn[b]
+        # the pose now first (with the broadphase's margin, as a pair that can only close by
+        # its gap has always been taken): a point within m of touching now says the pair is
+        # touching, and resting pairs, most of a pile's, cost one narrow phase as before
+        m_now = margin + reach[i] + reach[j]
+        got = _narrow(sa, sb, pos[a], quat[a], size[a], pos[b], quat[b], size[b], m_now,
+                      normal, points, depth, ids, fw, iw)
+        # none: farther than m_now on an axis (or, for a sphere, at all), which is m plus
+        # at least their relative travel, so they stay apart all step; a box pair that no
+        # axis showed apart (its clipping kept no point) is swept
+        if got == 0 and (sa == SPHERE or sb == SPHERE or fw[APART] > m_now):
+            continue
+        touching = False
+        for q in range(got):
+            touching = touching or depth[q] >= -m
+        if not touching:
+            for k in range(3):
+                move[k] = (vel[a, k] - vel[b, k]) * dt
+            u = _enter(sa, sb, pos[a], quat[a], size[a], pos[b], quat[b], size[b], move, m,
+                       fw)
+            if u < 0.0:
+                continue
+            if u > 0.0:
+                for k in range(3):
+                    at_a[k] = pos[a, k] + u * dt * vel[a, k]
+                    at_b[k] = pos[b, k] + u * dt * vel[b, k]
+                # the margin from here: m plus what is left of the travel, so every feature
+                # that can touch in the rest of the step is a row (a box that meets the wall
+                # with an edge spins onto its face within the step; with only the edge's row,
+                # the spin that row gives carries the face through); and m again, for
+                # rounding at the touch
+                rest = (1.0 - u) * math.sqrt(move[0] ** 2 + move[1] ** 2 + move[2] ** 2)
+                got = _narrow(sa, sb, at_a, quat[a], size[a], at_b, quat[b], size[b],
+                              2.0 * m + rest, normal, points, depth, ids, fw, iw)
+                closing = u * (move[0] * normal[0] + move[1] * normal[1]
+                               + move[2] * normal[2])
+                w = inv_mass[a] + inv_mass[b]  # > 0: the broadphase drops static pairs
+                wa = inv_mass[a] / w if w > 0.0 else 0.5
+                for q in range(got):
+                    depth[q] += closing
+                    for k in range(3):
+                        points[q, k] -= u * dt * (wa * vel[a, k] + (1.0 - wa) * vel[b, k])
         if got == 0:
             continue
         mu = math.sqrt(friction[a] * friction[b])
@@ -150,6 +221,13 @@ def plane_contacts(pos, quat, shape, size, inv_mass, friction, restitution, reac
     return count
 
 
+def spin_reach(bodies, dt: float) -> np.ndarray:
+    """(N,) how far [m] each body's spin can carry a point of its shape in ``dt``."""
+    b = bodies
+    radius = np.where(b.shape == SPHERE, b.size[:, 0], np.sqrt((b.size ** 2).sum(axis=1)))
+    return np.sqrt((b.angular_velocity ** 2).sum(axis=1)) * radius * dt
+
+
 def generate(bodies, planes, dt: float, contacts: BodyContacts,
              margin: float = SPECULATIVE_MARGIN, active: np.ndarray | None = None,
              exclude: np.ndarray | None = None) -> None:
@@ -176,8 +254,10 @@ def generate(bodies, planes, dt: float, contacts: BodyContacts,
     contacts.resize(MAX_POINTS * (first.shape[0] + b.count * n_planes))
     c = contacts
     out = (c.a, c.b, c.normal, c.r_a, c.r_b, c.depth, c.friction, c.restitution, c.key)
-    count = pair_contacts(b.position, b.orientation, b.shape, b.size, b.friction, b.restitution,
-                          first, second, reach, margin, *out)
+    turn = spin_reach(b, dt)
+    count = pair_contacts(b.position, b.orientation, b.velocity, turn, b.shape,
+                          b.size, b.inv_mass, b.friction, b.restitution, first, second, reach,
+                          margin, dt, *out)
     if n_planes:
         plane_n = np.array([p.normal for p in planes], dtype=np.float64).reshape(n_planes, 3)
         plane_d = np.array([p.offset for p in planes], dtype=np.float64)
