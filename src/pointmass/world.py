@@ -14,7 +14,9 @@ from . import _validate as check
 from .collide import Plane
 from .contacts import ContactBuffer, ContactGenerator, friction_value, restitution_value
 from .forces import ForceGenerator, drag_force, fold
+from . import particle_sleep as psleep
 from .particles import CHUNK, PARALLEL_MIN_PARTICLES, Particles
+from .rigid import islands as isl
 from .rigid import sleep as sleeping
 from .rigid.bodies import Bodies, Body
 from .rigid.collide import generate as generate_body_contacts
@@ -135,10 +137,13 @@ def _first_not_finite(pos, vel, start, stop):
 
 
 @njit(cache=True, nogil=True)
-def _integrate(pos, vel, force, acc, inv_mass, damping, g, k1, k2, dt, store_acc, start, stop):
+def _integrate(pos, vel, force, acc, inv_mass, damping, awake, g, k1, k2, dt, store_acc, start,
+               stop):
     """Integrate particles ``start`` to ``stop`` (a chunk); returns the first that is not
     finite afterwards, or -1. The acceleration is stored only with ``store_acc`` (when
-    something reads it: the solver's resting-contact test).
+    something reads it: the solver's resting-contact test). Sleeping particles (``awake``
+    False) are skipped, their accumulated force left for the wake test
+    (``particle_sleep.py``); with every particle awake the arithmetic is the same.
 
     Each particle's force accumulator is cleared as it is read, as Cyclone's integrate ends with
     clearAccumulator: no separate pass clears it, and a force added to ``particles.force``
@@ -152,6 +157,8 @@ def _integrate(pos, vel, force, acc, inv_mass, damping, g, k1, k2, dt, store_acc
     gx, gy, gz = g[0], g[1], g[2]
     probe = 0.0
     for i in range(start, stop):
+        if not awake[i]:
+            continue
         px, py, pz, vx, vy, vz, ax, ay, az = _integrate_particle(
             pos[i, 0], pos[i, 1], pos[i, 2], vel[i, 0], vel[i, 1], vel[i, 2],
             force[i, 0], force[i, 1], force[i, 2], inv_mass[i], damping[i], gx, gy, gz,
@@ -174,7 +181,8 @@ def _integrate(pos, vel, force, acc, inv_mass, damping, g, k1, k2, dt, store_acc
 
 
 @njit(cache=True, nogil=True, parallel=True)
-def _integrate_parallel(pos, vel, force, acc, inv_mass, damping, g, k1, k2, dt, store_acc):
+def _integrate_parallel(pos, vel, force, acc, inv_mass, damping, awake, g, k1, k2, dt,
+                        store_acc):
     """``_integrate`` on all cores, one chunk of ``CHUNK`` particles per task; returns the
     first non-finite particle in chunk order (the same for any thread count), or -1."""
     n = pos.shape[0]
@@ -182,8 +190,8 @@ def _integrate_parallel(pos, vel, force, acc, inv_mass, damping, g, k1, k2, dt, 
     bad = np.empty(chunks, np.int64)
     for c in prange(chunks):
         start, stop = c * CHUNK, min(n, (c + 1) * CHUNK)
-        bad[c] = _integrate(pos, vel, force, acc, inv_mass, damping, g, k1, k2, dt, store_acc,
-                            start, stop)
+        bad[c] = _integrate(pos, vel, force, acc, inv_mass, damping, awake, g, k1, k2, dt,
+                            store_acc, start, stop)
     first = -1
     for c in range(chunks):
         if bad[c] >= 0:
@@ -233,6 +241,7 @@ class World:
         self.body_impulses = ImpulseHistory()
         self._late_contacts = BodyContacts()  # the overlaps after the drift (body_late)
         self._body_rows = None
+        self._packed = None  # the last substep's particle–body view (or None)
         #: The warm start of sleeping bodies' contact points, given back when they wake.
         self.sleeping_impulses = sleeping.SleepingImpulses()
         #: Body pairs (K, 2) that must share an island (joints): they sleep and wake together.
@@ -335,6 +344,9 @@ class World:
         b = self.bodies
         if not b.awake.all():
             b.wake_islands(np.unique(b.island[~b.awake]))
+        p = self.particles
+        if not p.awake.all():
+            p.wake_all()
 
     @property
     def restitution_threshold(self) -> float:
@@ -525,7 +537,7 @@ class World:
         self.time += float(dt)
         if self.bodies.count:
             self.bodies.clear_accumulators()  # user forces and torques last one step
-        if self._sleep and self.bodies.count:
+        if self._sleep and (self.bodies.count or self.particles.count):
             self._fall_asleep(float(dt))
         self._steps += 1
         pen = self.contacts.penetration
@@ -586,8 +598,9 @@ class World:
         # The acceleration is stored only where it is read: the resting-contact test of the
         # particle solver and of the body stage.
         after = bool(self.contact_generators) or self.bodies.count > 0
-        args = (p.position, p.velocity, p.force, p.acceleration, p.inv_mass, p.damping, g, k1,
-                k2, dt, after)
+        sleepers = self._sleep and p.count > 0 and self._wake_disturbed()
+        args = (p.position, p.velocity, p.force, p.acceleration, p.inv_mass, p.damping, p.awake,
+                g, k1, k2, dt, after)
         if p.count >= PARALLEL_MIN_PARTICLES:
             bad = _integrate_parallel(*args)
         else:
@@ -598,11 +611,17 @@ class World:
                 f"(position {p.position[bad].tolist()}, velocity {p.velocity[bad].tolist()}); "
                 "a force is too strong for this dt, or a generator produced NaN")
 
-        # Find contacts: every contact generator appends to the buffer.
+        # Find contacts: every contact generator appends to the buffer. With particles
+        # asleep: none when nothing can disturb them, else the rows wake what they touch and
+        # those left reaching a sleeper are left out (``particle_sleep.py``).
         self.contacts.clear()
         self.contacts.dt = dt
-        for generator in self.contact_generators:
-            generator.generate(p, self.contacts)
+        live = psleep.active(p) if sleepers else None
+        if live is None or live.any():
+            for generator in self.contact_generators:
+                generator.generate(p, self.contacts)
+        if sleepers:
+            self._wake_touched(live, g, dt)
 
         # Resolve them: impacts, resting contacts and links, then interpenetration.
         solved = self.solver.solve(p, self.contacts, self.impulses, dt)
@@ -614,6 +633,55 @@ class World:
                 position_passes=solved.position_passes + rows.position_passes,
                 resolutions=solved.resolutions, cold_restart=solved.cold_restart)
         return solved
+
+    def _wake_disturbed(self) -> bool:
+        """Before the integration: wake the islands of sleeping particles that a force, the
+        user or a link disturbed (``particle_sleep.py``); returns whether any still sleep."""
+        p = self.particles
+        if p.awake.all():
+            psleep.disturbed(p.force, p.rest_force, p.velocity, p.position, p.still_position,
+                             p.inv_mass, p.awake, psleep.NUDGE, np.zeros(0, np.bool_))
+            return False
+        out = np.zeros(p.count, np.bool_)
+        if psleep.disturbed(p.force, p.rest_force, p.velocity, p.position, p.still_position,
+                            p.inv_mass, p.awake, psleep.NUDGE, out):
+            self._wake_particles(out)
+        return not p.awake.all()
+
+    def _wake_touched(self, live: np.ndarray, g: np.ndarray, dt: float) -> None:
+        """After finding contacts with particles asleep: wake the islands that a row or a link
+        joins to an active particle (those woken get this substep's kick: their rows are
+        solved), until none; then leave out the rows that still reach a sleeper."""
+        p = self.particles
+        c = self.contacts
+        links = psleep.link_pairs(self.forces, self.contact_generators)
+        while True:
+            out = np.zeros(p.count, np.bool_)
+            psleep.touched(c.a, c.b, c.normal, c.penetration, p.velocity, p.awake, live,
+                           float(dt), out)
+            if links.shape[0]:
+                psleep.wake_linked(p, links, live, out)
+            if not out.any():
+                break
+            woken = self._wake_particles(out)
+            psleep.kick(p.velocity, p.acceleration, p.force, p.inv_mass, p.damping, woken, g,
+                        float(dt))
+            live = psleep.active(p)
+        asleep = ~p.awake
+        p.force[asleep] = 0.0  # the accumulator is consumed, as by the integration
+        if c.count:
+            psleep.keep_rows(c, ~psleep.rows_with_sleepers(c, p.awake))
+
+    def _wake_particles(self, marked: np.ndarray) -> np.ndarray:
+        """Wake the islands of the sleeping particles of mask ``marked`` (and the bodies of
+        those islands); returns the mask of the particles woken."""
+        p = self.particles
+        labels = np.unique(p.island[marked & ~p.awake])
+        woken = p.wake_islands(labels)
+        b = self.bodies
+        if b.count and (labels < b.count).any() and not b.awake.all():
+            b.wake_islands(labels)  # an island of both: its bodies get the body stage's kick
+        return woken
 
     def _substep_bodies(self, dt: float):
         """The rigid bodies' substep: kick (gravity, forces, torques), contacts, the solver's
@@ -641,6 +709,7 @@ class World:
         try:  # the kick, and that of bodies woken while finding contacts, read the forces
             self._kick(dt, b.awake)
             packed, acc = self._body_contacts(dt, acc)
+            self._packed = packed  # the islands read its particles (``_fall_asleep``)
         finally:
             if kept is not None:
                 b.force[:], b.torque[:] = kept
@@ -705,6 +774,26 @@ class World:
                                            self._particle_restitution)
             full = acc if packed is None else np.concatenate(
                 [acc, p.acceleration[packed.selected]])
+            if packed is not None and self._sleep and not p.awake.all():
+                # a moving body wakes the sleeping particles it touches; the rows that still
+                # reach a sleeping particle are left out (``particle_sleep.py``)
+                c = self.body_contacts
+                out = np.zeros(p.count, np.bool_)
+                movers = sleeping.active(b) if live is None else live
+                if psleep.touched_by_bodies(b.count, c.a, c.b, c.normal, c.depth,
+                                            packed.selected, p.velocity, b.velocity,
+                                            b.angular_velocity, c.r_b, p.awake, movers,
+                                            float(dt), out):
+                    was = b.awake.copy()
+                    self._wake_particles(out)
+                    if (b.awake & ~was).any():
+                        self._kick(dt, b.awake & ~was)
+                    continue  # again, with the woken
+                slot = c.a >= b.count
+                reach = np.zeros(c.a.shape[0], np.bool_)
+                reach[slot] = ~p.awake[packed.selected[c.a[slot] - b.count]]
+                if reach.any():
+                    c.keep(~reach)
             if live is None:
                 return packed, full
             assert links is not None  # ``live`` is only set with sleeping on, as ``links``
@@ -722,10 +811,20 @@ class World:
         return np.concatenate([links, self.joints.body_pairs()])
 
     def _fall_asleep(self, dt: float) -> None:
-        """End of a step: islands still for long enough fall asleep (``rigid/sleep.py``)."""
+        """End of a step: islands of bodies and particles still for long enough fall asleep
+        (``rigid/sleep.py``, ``particle_sleep.py``)."""
         b = self.bodies
-        links = self._links()
-        slept = sleeping.fall_asleep(b, self.body_contacts, links, dt)
+        p = self.particles
+        links = self._links() if b.count else np.zeros((0, 2), np.int64)
+        extent = np.empty(b.count)
+        if b.count:
+            isl.extents(b.shape, b.size, b.inv_mass, b.inv_inertia, extent)
+        packed = self._packed
+        slept = psleep.fall_asleep(b, self.body_contacts,
+                                   None if packed is None else packed.selected, links, p,
+                                   self.contacts,
+                                   psleep.link_pairs(self.forces, self.contact_generators),
+                                   dt, extent)
         if slept is not None:
             self.sleeping_impulses.put_away(self.body_impulses, slept)
 

@@ -1,0 +1,352 @@
+"""Particles sleep in islands exactly as bodies do (``rigid/islands.py``, ``rigid/sleep.py``).
+
+One island graph covers particles and bodies: particle–particle contacts, links between
+particles (rods, cables, springs), particle–body contacts, body–body contacts and joints. Its
+nodes are the bodies first (their own indices, so a world without particles builds exactly the
+islands it built before), then the particles (node ``bodies + i``). An island falls asleep when
+none of its points has gone ``SLEEP_SPEED`` × ``TIME_TO_SLEEP`` (2.5 cm) in ``TIME_TO_SLEEP``
+(0.5 s) and none moves faster than ``SLEEP_SPEED`` (0.05 m/s) now: the bodies' thresholds and
+test (a particle's only point is its centre). A particle resting on an awake box joins the box's
+island and sleeps with it; a sleeping body is scenery to the particles that rest on it (as it
+is now: ``Packed.freeze``), so a particle that comes to rest on a sleeping box sleeps alone and
+wakes when the box does (the box, moving, touches it).
+
+Wakes a sleeping particle's island (all of it, its still-times back to 0):
+- a contact row with an *active* particle (awake and movable, or immovable and moving) that
+  touches it or whose gap closes within the step — Box2D's rule for bodies; a particle that
+  comes to rest on a sleeping pile wakes it, and they fall asleep again together;
+- a particle–body row with an active body that touches it or closes on it;
+- a link (rod, cable, spring) to an active particle;
+- a force on it that differs from the force the generators gave it when it fell asleep
+  (``rest_force``) by more than ``NUDGE`` per kg: a force added to ``particles.force`` by the
+  user, a spring whose other end moved, any generator that pushes it now and did not then.
+  Gravity and drag on all particles are folded into the integration and never reach the
+  accumulator: they wake nothing (a sleeping particle is at rest, so drag is 0 and gravity is
+  what its contacts held);
+- a position or velocity written by the user (a sleeping particle has velocity 0 and sits at
+  ``still_position``).
+
+A sleeping particle is not integrated, and the rows that reach it (after the wakes: speculative
+gaps that stay open this step) are left out of the solve, as rows to sleeping bodies are. A
+world where nothing is active finds no particle contacts at all.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from numba import njit
+
+from .rigid import islands as isl
+
+#: The change of acceleration [m/s²] that wakes a sleeping particle: what would bring it to the
+#: sleep speed within the time to sleep (0.05 m/s in 0.5 s). Smaller changes are below what the
+#: sleep test itself ignores (a damped spring's force at the moment it fell asleep, 0 after).
+NUDGE = isl.SLEEP_SPEED / isl.TIME_TO_SLEEP
+
+
+@njit(cache=True, nogil=True)
+def disturbed(force, rest_force, velocity, position, still_position, inv_mass, awake, nudge,
+              out):
+    """Before the integration: mark in ``out`` each sleeping particle whose accumulated force
+    differs from its ``rest_force`` by more than would change its velocity by ``nudge`` [m/s²]
+    (|Δf|·w: a spring whose damping term fell to 0 as it fell asleep does not wake it; a push
+    that would bring it to the sleep speed within the time to sleep does), or whose velocity is
+    not 0, or that is not where it fell asleep (the user wrote to it); for awake ones, keep the
+    force in ``rest_force`` (if it falls asleep after this step, the force it sleeps under).
+    Returns how many were marked."""
+    count = 0
+    for i in range(force.shape[0]):
+        if awake[i]:
+            for k in range(3):
+                rest_force[i, k] = force[i, k]
+            continue
+        w = inv_mass[i]
+        if w == 0.0:
+            continue
+        change = 0.0
+        moved = False
+        for k in range(3):
+            change += (force[i, k] - rest_force[i, k]) ** 2
+            if velocity[i, k] != 0.0 or position[i, k] != still_position[i, k]:
+                moved = True
+        if moved or math.sqrt(change) * w > nudge:
+            out[i] = True
+            count += 1
+    return count
+
+
+@njit(cache=True, nogil=True)
+def touched(ca, cb, normal, depth, velocity, awake, active, dt, out):
+    """Mark in ``out`` each sleeping particle that a particle–particle row joins to an active
+    one: the row touches (depth ≥ −``TOUCH_GAP``) or the gap closes within ``dt`` (the relative
+    normal velocity covers it). Rows against scenery (b < 0) wake nothing. Returns how many."""
+    count = 0
+    for c in range(ca.shape[0]):
+        a = ca[c]
+        b = cb[c]
+        if b < 0 or awake[a] == awake[b]:
+            continue
+        sleeper, other = (b, a) if awake[a] else (a, b)
+        if not active[other] or out[sleeper]:
+            continue
+        d = depth[c]
+        if d < -isl.TOUCH_GAP:
+            vs = 0.0
+            for k in range(3):
+                vs += (velocity[a, k] - velocity[b, k]) * normal[c, k]
+            if d - vs * dt < -isl.TOUCH_GAP:
+                continue  # a gap that stays open this step
+        out[sleeper] = True
+        count += 1
+    return count
+
+
+@njit(cache=True, nogil=True)
+def touched_by_bodies(n, ca, cb, normal, depth, selected, pvel, bvel, bang, r_b, awake_p,
+                      active_b, dt, out):
+    """Mark in ``out`` (particles) each sleeping particle that a particle–body row (packed
+    particle index ``ca`` ≥ ``n``, body ``cb``) joins to an active body: touching, or closing
+    within ``dt`` at the contact point. Returns how many."""
+    count = 0
+    for c in range(ca.shape[0]):
+        slot = ca[c]
+        b = cb[c]
+        if slot < n or b < 0 or b >= n:
+            continue
+        i = selected[slot - n]
+        if awake_p[i] or out[i] or not active_b[b]:
+            continue
+        d = depth[c]
+        if d < -isl.TOUCH_GAP:
+            vs = 0.0
+            for k in range(3):
+                vb = bvel[b, k]
+                if k == 0:
+                    vb += bang[b, 1] * r_b[c, 2] - bang[b, 2] * r_b[c, 1]
+                elif k == 1:
+                    vb += bang[b, 2] * r_b[c, 0] - bang[b, 0] * r_b[c, 2]
+                else:
+                    vb += bang[b, 0] * r_b[c, 1] - bang[b, 1] * r_b[c, 0]
+                vs += (pvel[i, k] - vb) * normal[c, k]
+            if d - vs * dt < -isl.TOUCH_GAP:
+                continue
+        out[i] = True
+        count += 1
+    return count
+
+
+@njit(cache=True, nogil=True)
+def kick(velocity, acceleration, force, inv_mass, damping, woken, g, dt):
+    """The velocity half of the integration for the particles of mask ``woken`` (woken after
+    the integration, by a row that is solved in this substep): v += a·dt, v *= d^dt, their
+    accumulated force consumed. Their position stays: the rows were measured there."""
+    for i in range(velocity.shape[0]):
+        if not woken[i]:
+            continue
+        w = inv_mass[i]
+        for k in range(3):
+            a = g[k] + force[i, k] * w
+            acceleration[i, k] = a
+            velocity[i, k] += a * dt
+            force[i, k] = 0.0
+        d = damping[i]
+        if d < 1.0:
+            keep = d**dt
+            for k in range(3):
+                velocity[i, k] *= keep
+
+
+@njit(cache=True, nogil=True)
+def still_timers(pos, movable, awake, still_pos, sleep_time, dt, reach, window):
+    """``islands.still_timers`` for particles (points: no turn)."""
+    for i in range(pos.shape[0]):
+        if not (movable[i] and awake[i]):
+            continue
+        dx = pos[i, 0] - still_pos[i, 0]
+        dy = pos[i, 1] - still_pos[i, 1]
+        dz = pos[i, 2] - still_pos[i, 2]
+        if math.sqrt(dx * dx + dy * dy + dz * dz) > reach:
+            sleep_time[i] = 0.0
+            for k in range(3):
+                still_pos[i, k] = pos[i, k]
+        else:
+            before = sleep_time[i]
+            sleep_time[i] = before + dt
+            if math.floor(sleep_time[i] / window) > math.floor(before / window):
+                for k in range(3):
+                    still_pos[i, k] = pos[i, k]
+
+
+@njit(cache=True, nogil=True)
+def join(parent, ca, cb, depth, offset_a, offset_b, movable):
+    """Union the nodes of rows ``ca``–``cb`` (node = index + offset; a negative index is
+    scenery) that touch (depth ≥ −``TOUCH_GAP``; ``depth`` empty: links, always) and whose
+    ends are both movable (``islands.build_islands``)."""
+    for c in range(ca.shape[0]):
+        if ca[c] < 0 or cb[c] < 0:
+            continue
+        if depth.shape[0] and depth[c] < -isl.TOUCH_GAP:
+            continue
+        a = ca[c] + offset_a
+        b = cb[c] + offset_b
+        if movable[a] and movable[b]:
+            isl._union(parent, a, b)
+
+
+@njit(cache=True, nogil=True)
+def ready_islands(parent, movable, awake, sleep_time, speed, time_to_sleep, threshold, ready):
+    """``ready`` (nodes,) True at the root of each island all of whose movable nodes are awake,
+    still for ``time_to_sleep`` and slower than ``threshold`` now (``islands.fall_asleep``)."""
+    for i in range(parent.shape[0]):
+        ready[i] = True
+    for i in range(parent.shape[0]):
+        if not movable[i]:
+            continue
+        if not awake[i] or sleep_time[i] < time_to_sleep or speed[i] > threshold:
+            ready[parent[i]] = False
+
+
+def active(particles) -> np.ndarray:
+    """Particles that can disturb others: awake movable ones, and immovable ones that move."""
+    p = particles
+    return p.awake & ((p.inv_mass > 0.0) | (p.velocity != 0.0).any(axis=1))
+
+
+def link_pairs(forces, contact_generators) -> np.ndarray:
+    """The particle pairs (K, 2) that links join into one island: springs between two
+    particles and rods and cables between two particles (anchored ones join nothing)."""
+    from .links import _Links
+    from .springs import Spring
+
+    pairs = []
+    for g in (*forces, *contact_generators):
+        if isinstance(g, Spring) or (isinstance(g, _Links) and g._anchors() is None):
+            pairs.append(np.column_stack([g.a, g.b]))
+    if not pairs:
+        return np.zeros((0, 2), np.int64)
+    return np.ascontiguousarray(np.concatenate(pairs).astype(np.int64))
+
+
+def wake_linked(particles, links: np.ndarray, live: np.ndarray, out: np.ndarray) -> None:
+    """Mark in ``out`` the sleeping particles linked to an ``live`` one."""
+    awake = particles.awake
+    for one, other in ((links[:, 0], links[:, 1]), (links[:, 1], links[:, 0])):
+        out[other[live[one] & ~awake[other]]] = True
+
+
+def keep_rows(contacts, keep: np.ndarray) -> None:
+    """Keep only the rows of mask ``keep`` in the particle contact buffer (in order)."""
+    c = contacts
+    m = c.count
+    k = int(np.count_nonzero(keep))
+    if k == m:
+        return
+    for name in ("_a", "_b", "_normal", "_penetration", "_restitution", "_key", "_friction",
+                 "_bilateral", "_anchor"):
+        arr = getattr(c, name)
+        arr[:k] = arr[:m][keep]
+    c._friction[k:m] = 0.0  # as ``clear`` leaves rows past the count
+    c._bilateral[k:m] = False
+    c._anchor[k:m] = np.nan
+    c.count = k
+
+
+def rows_with_sleepers(contacts, awake: np.ndarray) -> np.ndarray:
+    """Mask of the particle rows with a sleeping end."""
+    a = contacts.a
+    b = contacts.b
+    out = ~awake[a]
+    other = b >= 0
+    out[other] |= ~awake[b[other]]
+    return out
+
+
+def fall_asleep(bodies, body_contacts, selected, body_links, particles, contacts, links,
+                dt: float, extent: np.ndarray) -> np.ndarray | None:
+    """End of a step of ``dt`` [s]: advance every still-time, build the islands of bodies and
+    particles together from the last substep's rows (``body_contacts``, whose particle rows
+    name packed slots, ``selected`` mapping them to particles; ``contacts``, the particle rows)
+    and the links (``body_links`` (K, 2) joints, ``links`` (L, 2) particle pairs), and put to
+    sleep every island that has been still for ``TIME_TO_SLEEP``. ``extent`` (bodies,) is each
+    body's extent (``islands.extents``). Returns the mask of the bodies that fell asleep, or
+    None when none did.
+
+    A sleeping body joins no particle (the particles resting on it push it as scenery and may
+    sleep alone); an island holding a sleeping body waits, as it did before particles slept."""
+    b = bodies
+    p = particles
+    nb = b.count
+    n = nb + p.count
+    reach = isl.SLEEP_SPEED * isl.TIME_TO_SLEEP
+    movable_b = b.inv_mass > 0.0
+    movable_p = p.inv_mass > 0.0
+    if nb:
+        isl.still_timers(b.position, b.orientation, extent, movable_b, b.awake,
+                         b.still_position, b.still_orientation, b.sleep_time, float(dt),
+                         reach, isl.TIME_TO_SLEEP)
+    if p.count:
+        still_timers(p.position, movable_p, p.awake, p.still_position, p.sleep_time, float(dt),
+                     reach, isl.TIME_TO_SLEEP)
+    movable = np.concatenate([movable_b, movable_p])
+    awake = np.concatenate([b.awake, p.awake])
+    parent = np.arange(n, dtype=np.int64)
+    none = np.empty(0)
+    if nb:
+        c = body_contacts
+        ca = c.a
+        cb = c.b
+        if selected is not None and (ca >= nb).any():
+            slot = ca >= nb
+            ca = ca.copy()
+            ca[slot] = nb + selected[ca[slot] - nb]
+            cb = np.where(slot & ~b.awake[np.maximum(cb, 0)], -1, cb)  # sleeping: scenery
+        join(parent, ca, cb, c.depth, 0, 0, movable)
+        join(parent, np.ascontiguousarray(body_links[:, 0]),
+             np.ascontiguousarray(body_links[:, 1]), none, 0, 0, movable)
+    if p.count:
+        join(parent, contacts.a, contacts.b, contacts.penetration, nb, nb, movable)
+        join(parent, np.ascontiguousarray(links[:, 0]), np.ascontiguousarray(links[:, 1]),
+             none, nb, nb, movable)
+    roots(parent)
+    speed = np.empty(n)
+    speeds(b.velocity, b.angular_velocity, extent, p.velocity, speed)
+    ready = np.empty(n, np.bool_)
+    ready_islands(parent, movable, awake, np.concatenate([b.sleep_time, p.sleep_time]), speed,
+                  isl.TIME_TO_SLEEP, isl.SLEEP_SPEED, ready)
+    falls = movable & awake & ready[parent]
+    if not falls.any():
+        return None
+    slept_b = falls[:nb]
+    if slept_b.any():
+        b.awake[slept_b] = False
+        b.island[slept_b] = parent[:nb][slept_b]
+        b.velocity[slept_b] = 0.0
+        b.angular_velocity[slept_b] = 0.0
+    slept_p = falls[nb:]
+    if slept_p.any():
+        p.awake[slept_p] = False
+        p.island[slept_p] = parent[nb:][slept_p]
+        p.velocity[slept_p] = 0.0
+        p.still_position[slept_p] = p.position[slept_p]
+    return slept_b if slept_b.any() else None
+
+
+@njit(cache=True, nogil=True)
+def roots(parent):
+    """Each node's island: the root of its set (its lowest node)."""
+    for i in range(parent.shape[0]):
+        parent[i] = isl.find_root(parent, i)
+
+
+@njit(cache=True, nogil=True)
+def speeds(vel, ang, extent, pvel, out):
+    """Each node's fastest point [m/s]: |v| + |ω|·extent for a body, |v| for a particle."""
+    nb = vel.shape[0]
+    for i in range(nb):
+        v = math.sqrt(vel[i, 0] ** 2 + vel[i, 1] ** 2 + vel[i, 2] ** 2)
+        w = math.sqrt(ang[i, 0] ** 2 + ang[i, 1] ** 2 + ang[i, 2] ** 2)
+        out[i] = v + w * extent[i]
+    for i in range(pvel.shape[0]):
+        out[nb + i] = math.sqrt(pvel[i, 0] ** 2 + pvel[i, 1] ** 2 + pvel[i, 2] ** 2)
