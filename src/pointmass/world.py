@@ -11,10 +11,10 @@ import numpy as np
 from numba import njit, prange
 
 from . import _validate as check
+from . import particle_sleep as psleep
 from .collide import Plane
 from .contacts import ContactBuffer, ContactGenerator, friction_value, restitution_value
 from .forces import ForceGenerator, drag_force, fold
-from . import particle_sleep as psleep
 from .particles import CHUNK, PARALLEL_MIN_PARTICLES, Particles
 from .rigid import islands as isl
 from .rigid import sleep as sleeping
