@@ -47,20 +47,21 @@ NUDGE = isl.SLEEP_SPEED / isl.TIME_TO_SLEEP
 
 
 @njit(cache=True, nogil=True)
-def disturbed(force, rest_force, velocity, position, still_position, inv_mass, awake, nudge,
-              out):
+def disturbed(force, rest_force, velocity, position, still_position, inv_mass, awake,
+              sleep_time, nudge, out):
     """Before the integration: mark in ``out`` each sleeping particle whose accumulated force
     differs from its ``rest_force`` by more than would change its velocity by ``nudge`` [m/s²]
     (|Δf|·w: a spring whose damping term fell to 0 as it fell asleep does not wake it; a push
     that would bring it to the sleep speed within the time to sleep does), or whose velocity is
     not 0, or that is not where it fell asleep (the user wrote to it); for awake ones, keep the
-    force in ``rest_force`` (if it falls asleep after this step, the force it sleeps under).
-    Returns how many were marked."""
+    force in ``rest_force`` (if it falls asleep after this step, the force it sleeps under;
+    only those already still, ``sleep_time`` > 0, can). Returns how many were marked."""
     count = 0
     for i in range(force.shape[0]):
         if awake[i]:
-            for k in range(3):
-                rest_force[i, k] = force[i, k]
+            if sleep_time[i] > 0.0:  # only one that may fall asleep after this step
+                for k in range(3):
+                    rest_force[i, k] = force[i, k]
             continue
         w = inv_mass[i]
         if w == 0.0:
@@ -159,8 +160,10 @@ def kick(velocity, acceleration, force, inv_mass, damping, woken, g, dt):
 
 
 @njit(cache=True, nogil=True)
-def still_timers(pos, movable, awake, still_pos, sleep_time, dt, reach, window):
-    """``islands.still_timers`` for particles (points: no turn)."""
+def still_timers(pos, movable, awake, still_pos, sleep_time, dt, reach, window, time_to_sleep):
+    """``islands.still_timers`` for particles (points: no turn); returns how many have been
+    still for ``time_to_sleep`` (none: no island can fall asleep, nothing more to do)."""
+    ready = 0
     for i in range(pos.shape[0]):
         if not (movable[i] and awake[i]):
             continue
@@ -177,6 +180,9 @@ def still_timers(pos, movable, awake, still_pos, sleep_time, dt, reach, window):
             if math.floor(sleep_time[i] / window) > math.floor(before / window):
                 for k in range(3):
                     still_pos[i, k] = pos[i, k]
+            if sleep_time[i] >= time_to_sleep:
+                ready += 1
+    return ready
 
 
 @njit(cache=True, nogil=True)
@@ -264,7 +270,7 @@ def rows_with_sleepers(contacts, awake: np.ndarray) -> np.ndarray:
 
 
 def fall_asleep(bodies, body_contacts, selected, body_links, particles, contacts, links,
-                dt: float, extent: np.ndarray) -> np.ndarray | None:
+                dt: float) -> np.ndarray | None:
     """End of a step of ``dt`` [s]: advance every still-time, build the islands of bodies and
     particles together from the last substep's rows (``body_contacts``, whose particle rows
     name packed slots, ``selected`` mapping them to particles; ``contacts``, the particle rows)
@@ -282,13 +288,21 @@ def fall_asleep(bodies, body_contacts, selected, body_links, particles, contacts
     reach = isl.SLEEP_SPEED * isl.TIME_TO_SLEEP
     movable_b = b.inv_mass > 0.0
     movable_p = p.inv_mass > 0.0
+    extent = np.empty(nb)
+    still = 0
     if nb:
+        isl.extents(b.shape, b.size, b.inv_mass, b.inv_inertia, extent)
         isl.still_timers(b.position, b.orientation, extent, movable_b, b.awake,
                          b.still_position, b.still_orientation, b.sleep_time, float(dt),
                          reach, isl.TIME_TO_SLEEP)
+        still = int(np.count_nonzero(b.sleep_time >= isl.TIME_TO_SLEEP))
     if p.count:
-        still_timers(p.position, movable_p, p.awake, p.still_position, p.sleep_time, float(dt),
-                     reach, isl.TIME_TO_SLEEP)
+        still += still_timers(p.position, movable_p, p.awake, p.still_position, p.sleep_time,
+                              float(dt), reach, isl.TIME_TO_SLEEP, isl.TIME_TO_SLEEP)
+    if not still:
+        return None  # nothing has been still long enough: no island can fall asleep
+    body_links = body_links()
+    links = links()
     movable = np.concatenate([movable_b, movable_p])
     awake = np.concatenate([b.awake, p.awake])
     parent = np.arange(n, dtype=np.int64)

@@ -16,7 +16,6 @@ from .collide import Plane
 from .contacts import ContactBuffer, ContactGenerator, friction_value, restitution_value
 from .forces import ForceGenerator, drag_force, fold
 from .particles import CHUNK, PARALLEL_MIN_PARTICLES, Particles
-from .rigid import islands as isl
 from .rigid import sleep as sleeping
 from .rigid.bodies import Bodies, Body
 from .rigid.collide import generate as generate_body_contacts
@@ -640,11 +639,12 @@ class World:
         p = self.particles
         if p.awake.all():
             psleep.disturbed(p.force, p.rest_force, p.velocity, p.position, p.still_position,
-                             p.inv_mass, p.awake, psleep.NUDGE, np.zeros(0, np.bool_))
+                             p.inv_mass, p.awake, p.sleep_time, psleep.NUDGE,
+                             np.zeros(0, np.bool_))
             return False
         out = np.zeros(p.count, np.bool_)
         if psleep.disturbed(p.force, p.rest_force, p.velocity, p.position, p.still_position,
-                            p.inv_mass, p.awake, psleep.NUDGE, out):
+                            p.inv_mass, p.awake, p.sleep_time, psleep.NUDGE, out):
             self._wake_particles(out)
         return not p.awake.all()
 
@@ -814,17 +814,12 @@ class World:
         """End of a step: islands of bodies and particles still for long enough fall asleep
         (``rigid/sleep.py``, ``particle_sleep.py``)."""
         b = self.bodies
-        p = self.particles
-        links = self._links() if b.count else np.zeros((0, 2), np.int64)
-        extent = np.empty(b.count)
-        if b.count:
-            isl.extents(b.shape, b.size, b.inv_mass, b.inv_inertia, extent)
-        packed = self._packed
-        slept = psleep.fall_asleep(b, self.body_contacts,
-                                   None if packed is None else packed.selected, links, p,
-                                   self.contacts,
-                                   psleep.link_pairs(self.forces, self.contact_generators),
-                                   dt, extent)
+        packed = self._packed if b.count else None
+        slept = psleep.fall_asleep(
+            b, self.body_contacts, None if packed is None else packed.selected,
+            self._links if b.count else partial(np.zeros, (0, 2), np.int64), self.particles,
+            self.contacts, partial(psleep.link_pairs, self.forces, self.contact_generators),
+            dt)
         if slept is not None:
             self.sleeping_impulses.put_away(self.body_impulses, slept)
 
