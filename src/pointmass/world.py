@@ -241,6 +241,8 @@ class World:
         self._late_contacts = BodyContacts()  # the overlaps after the drift (body_late)
         self._body_rows = None
         self._packed = None  # the last substep's particle–body view (or None)
+        #: The longest still-time of an awake particle after the last step [s].
+        self._longest_still = 0.0
         #: The warm start of sleeping bodies' contact points, given back when they wake.
         self.sleeping_impulses = sleeping.SleepingImpulses()
         #: Body pairs (K, 2) that must share an island (joints): they sleep and wake together.
@@ -597,7 +599,7 @@ class World:
         # The acceleration is stored only where it is read: the resting-contact test of the
         # particle solver and of the body stage.
         after = bool(self.contact_generators) or self.bodies.count > 0
-        sleepers = self._sleep and p.count > 0 and self._wake_disturbed()
+        sleepers = self._sleep and p.count > 0 and self._wake_disturbed(dt)
         args = (p.position, p.velocity, p.force, p.acceleration, p.inv_mass, p.damping, p.awake,
                 g, k1, k2, dt, after)
         if p.count >= PARALLEL_MIN_PARTICLES:
@@ -633,18 +635,25 @@ class World:
                 resolutions=solved.resolutions, cold_restart=solved.cold_restart)
         return solved
 
-    def _wake_disturbed(self) -> bool:
-        """Before the integration: wake the islands of sleeping particles that a force, the
-        user or a link disturbed (``particle_sleep.py``); returns whether any still sleep."""
+    def _wake_disturbed(self, dt: float) -> bool:
+        """Before the integration of a substep of ``dt``: wake the islands of sleeping
+        particles that a force or the user disturbed (``particle_sleep.py``) and keep the
+        force of those that may fall asleep after this step; returns whether any still sleep.
+        """
         p = self.particles
+        # Still for this long, a particle may fall asleep at the end of this step (a margin of
+        # a step for the sums of the still-time's floats).
+        candidate = psleep.TIME_TO_SLEEP - 2.0 * dt * self._substeps
         if p.awake.all():
+            if self._longest_still < candidate:
+                return False  # none can fall asleep after this step: no rest force to keep
             psleep.disturbed(p.force, p.rest_force, p.velocity, p.position, p.still_position,
-                             p.inv_mass, p.awake, p.sleep_time, psleep.NUDGE,
+                             p.inv_mass, p.awake, p.sleep_time, candidate, psleep.NUDGE,
                              np.zeros(0, np.bool_))
             return False
         out = np.zeros(p.count, np.bool_)
         if psleep.disturbed(p.force, p.rest_force, p.velocity, p.position, p.still_position,
-                            p.inv_mass, p.awake, p.sleep_time, psleep.NUDGE, out):
+                            p.inv_mass, p.awake, p.sleep_time, candidate, psleep.NUDGE, out):
             self._wake_particles(out)
         return not p.awake.all()
 
@@ -815,7 +824,7 @@ class World:
         (``rigid/sleep.py``, ``particle_sleep.py``)."""
         b = self.bodies
         packed = self._packed if b.count else None
-        slept = psleep.fall_asleep(
+        slept, self._longest_still = psleep.fall_asleep(
             b, self.body_contacts, None if packed is None else packed.selected,
             self._links if b.count else partial(np.zeros, (0, 2), np.int64), self.particles,
             self.contacts, partial(psleep.link_pairs, self.forces, self.contact_generators),
