@@ -163,7 +163,7 @@ def kick(velocity, acceleration, force, inv_mass, damping, woken, g, dt):
 
 @njit(cache=True, nogil=True)
 def still_timers(pos, inv_mass, awake, still_pos, sleep_time, dt, reach, window, time_to_sleep,
-                 start=0, stop=-1):
+                 start, stop):
     """``islands.still_timers`` for particles (points: no turn). Returns how many have been
     still for ``time_to_sleep`` (none: no island can fall asleep, nothing more to do) and the
     longest still-time of an awake particle (which ones may fall asleep after the next step:
@@ -171,7 +171,7 @@ def still_timers(pos, inv_mass, awake, still_pos, sleep_time, dt, reach, window,
     ready = 0
     longest = 0.0
     reach2 = reach * reach  # squared distances: no root per particle
-    for i in range(start, pos.shape[0] if stop < 0 else stop):
+    for i in range(start, stop):
         if not (inv_mass[i] > 0.0 and awake[i]):
             continue
         dx = pos[i, 0] - still_pos[i, 0]
@@ -320,11 +320,14 @@ def fall_asleep(bodies, body_contacts, selected, body_links, particles, contacts
     extent = np.empty(nb)
     still = 0
     longest = 0.0
-    if p.count:
-        timers = still_timers_parallel if p.count >= PARALLEL_MIN_PARTICLES else still_timers
-        still, longest = timers(p.position, p.inv_mass, p.awake, p.still_position,
-                                     p.sleep_time, float(dt), reach, isl.TIME_TO_SLEEP,
-                                     isl.TIME_TO_SLEEP)
+    if p.count >= PARALLEL_MIN_PARTICLES:
+        still, longest = still_timers_parallel(p.position, p.inv_mass, p.awake, p.still_position,
+                                               p.sleep_time, float(dt), reach,
+                                               isl.TIME_TO_SLEEP, isl.TIME_TO_SLEEP)
+    elif p.count:  # (start and stop given: numba takes a slow path for omitted arguments)
+        still, longest = still_timers(p.position, p.inv_mass, p.awake, p.still_position,
+                                      p.sleep_time, float(dt), reach, isl.TIME_TO_SLEEP,
+                                      isl.TIME_TO_SLEEP, 0, p.count)
     if nb:
         isl.extents(b.shape, b.size, b.inv_mass, b.inv_inertia, extent)
         isl.still_timers(b.position, b.orientation, extent, b.inv_mass > 0.0, b.awake,

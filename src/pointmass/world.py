@@ -663,6 +663,9 @@ class World:
         solved), until none; then leave out the rows that still reach a sleeper."""
         p = self.particles
         c = self.contacts
+        if not live.any():  # nothing moves: no rows were found, no link can wake
+            p.force[~p.awake] = 0.0
+            return
         links = psleep.link_pairs(self.forces, self.contact_generators)
         while True:
             out = np.zeros(p.count, np.bool_)
