@@ -38,8 +38,10 @@ import math
 import numpy as np
 from numba import njit, prange
 
+from .links import _Links
 from .particles import CHUNK, PARALLEL_MIN_PARTICLES
 from .rigid import islands as isl
+from .springs import Spring
 
 #: The change of acceleration [m/s²] that wakes a sleeping particle: what would bring it to the
 #: sleep speed within the time to sleep (0.05 m/s in 0.5 s). Smaller changes are below what the
@@ -248,15 +250,21 @@ def ready_islands(parent, movable, awake, sleep_time, speed, time_to_sleep, thre
 def active(particles) -> np.ndarray:
     """Particles that can disturb others: awake movable ones, and immovable ones that move."""
     p = particles
-    return p.awake & ((p.inv_mass > 0.0) | (p.velocity != 0.0).any(axis=1))
+    out = np.empty(p.count, np.bool_)
+    _active(p.awake, p.inv_mass, p.velocity, out)
+    return out
+
+
+@njit(cache=True, nogil=True)
+def _active(awake, inv_mass, velocity, out):
+    for i in range(awake.shape[0]):
+        out[i] = awake[i] and (inv_mass[i] > 0.0 or velocity[i, 0] != 0.0
+                               or velocity[i, 1] != 0.0 or velocity[i, 2] != 0.0)
 
 
 def link_pairs(forces, contact_generators) -> np.ndarray:
     """The particle pairs (K, 2) that links join into one island: springs between two
     particles and rods and cables between two particles (anchored ones join nothing)."""
-    from .links import _Links
-    from .springs import Spring
-
     pairs = []
     for g in (*forces, *contact_generators):
         if isinstance(g, Spring) or (isinstance(g, _Links) and g._anchors() is None):
@@ -273,31 +281,41 @@ def wake_linked(particles, links: np.ndarray, live: np.ndarray, out: np.ndarray)
         out[other[live[one] & ~awake[other]]] = True
 
 
-def keep_rows(contacts, keep: np.ndarray) -> None:
-    """Keep only the rows of mask ``keep`` in the particle contact buffer (in order)."""
+def leave_out_sleepers(contacts, awake: np.ndarray) -> None:
+    """Drop the particle rows with a sleeping end from the buffer, in place, in order (one
+    compiled pass: with numpy's masks, 1.8 ms a step on the 1000-sphere pit)."""
     c = contacts
-    m = c.count
-    k = int(np.count_nonzero(keep))
-    if k == m:
-        return
-    for name in ("_a", "_b", "_normal", "_penetration", "_restitution", "_key", "_friction",
-                 "_bilateral", "_anchor"):
-        arr = getattr(c, name)
-        arr[:k] = arr[:m][keep]
-    c._friction[k:m] = 0.0  # as ``clear`` leaves rows past the count
-    c._bilateral[k:m] = False
-    c._anchor[k:m] = np.nan
+    k = _compact(awake, c.count, c._a, c._b, c._normal, c._penetration, c._restitution, c._key,
+                 c._friction, c._bilateral, c._anchor)
     c.count = k
 
 
-def rows_with_sleepers(contacts, awake: np.ndarray) -> np.ndarray:
-    """Mask of the particle rows with a sleeping end."""
-    a = contacts.a
-    b = contacts.b
-    out = ~awake[a]
-    other = b >= 0
-    out[other] |= ~awake[b[other]]
-    return out
+@njit(cache=True, nogil=True)
+def _compact(awake, m, a, b, normal, pen, rest, key, friction, bilateral, anchor):
+    """Keep the rows among the first ``m`` whose ends are awake (b < 0: scenery); the rows
+    past the new count are left as ``ContactBuffer.clear`` leaves them. Returns the count."""
+    k = 0
+    for c in range(m):
+        if not awake[a[c]] or (b[c] >= 0 and not awake[b[c]]):
+            continue
+        if k != c:
+            a[k] = a[c]
+            b[k] = b[c]
+            for j in range(3):
+                normal[k, j] = normal[c, j]
+                anchor[k, j] = anchor[c, j]
+            pen[k] = pen[c]
+            rest[k] = rest[c]
+            key[k] = key[c]
+            friction[k] = friction[c]
+            bilateral[k] = bilateral[c]
+        k += 1
+    for c in range(k, m):
+        friction[c] = 0.0
+        bilateral[c] = False
+        for j in range(3):
+            anchor[c, j] = np.nan
+    return k
 
 
 def fall_asleep(bodies, body_contacts, selected, body_links, particles, contacts, links,
@@ -338,36 +356,24 @@ def fall_asleep(bodies, body_contacts, selected, body_links, particles, contacts
         return None, longest  # nothing has been still long enough: no island can fall asleep
     body_links = body_links()
     links = links()
-    movable_b = b.inv_mass > 0.0
-    movable_p = p.inv_mass > 0.0
-    movable = np.concatenate([movable_b, movable_p])
-    awake = np.concatenate([b.awake, p.awake])
-    parent = np.arange(n, dtype=np.int64)
-    none = np.empty(0)
+    ca = cb = np.zeros(0, np.int64)
+    depth = np.zeros(0)
     if nb:
         c = body_contacts
-        ca = c.a
-        cb = c.b
+        ca, cb, depth = c.a, c.b, c.depth
         if selected is not None and (ca >= nb).any():
             slot = ca >= nb
             ca = ca.copy()
             ca[slot] = nb + selected[ca[slot] - nb]
             cb = np.where(slot & ~b.awake[np.maximum(cb, 0)], -1, cb)  # sleeping: scenery
-        join(parent, ca, cb, c.depth, 0, 0, movable)
-        join(parent, np.ascontiguousarray(body_links[:, 0]),
-             np.ascontiguousarray(body_links[:, 1]), none, 0, 0, movable)
-    if p.count:
-        join(parent, contacts.a, contacts.b, contacts.penetration, nb, nb, movable)
-        join(parent, np.ascontiguousarray(links[:, 0]), np.ascontiguousarray(links[:, 1]),
-             none, nb, nb, movable)
-    roots(parent)
-    speed = np.empty(n)
-    speeds(b.velocity, b.angular_velocity, extent, p.velocity, speed)
-    ready = np.empty(n, np.bool_)
-    ready_islands(parent, movable, awake, np.concatenate([b.sleep_time, p.sleep_time]), speed,
-                  isl.TIME_TO_SLEEP, isl.SLEEP_SPEED, ready)
-    falls = movable & awake & ready[parent]
-    if not falls.any():
+    parent = np.empty(n, np.int64)
+    falls = np.empty(n, np.bool_)
+    if not islands_to_sleep(
+            b.inv_mass, b.awake, b.sleep_time, b.velocity, b.angular_velocity, extent,
+            p.inv_mass, p.awake, p.sleep_time, p.velocity, ca, cb, depth,
+            np.ascontiguousarray(body_links[:, 0]), np.ascontiguousarray(body_links[:, 1]),
+            contacts.a, contacts.b, contacts.penetration, np.ascontiguousarray(links[:, 0]),
+            np.ascontiguousarray(links[:, 1]), isl.TIME_TO_SLEEP, isl.SLEEP_SPEED, parent, falls):
         return None, longest
     slept_b = falls[:nb]
     if slept_b.any():
@@ -382,6 +388,48 @@ def fall_asleep(bodies, body_contacts, selected, body_links, particles, contacts
         p.velocity[slept_p] = 0.0
         p.still_position[slept_p] = p.position[slept_p]
     return (slept_b if slept_b.any() else None), longest
+
+
+@njit(cache=True, nogil=True)
+def islands_to_sleep(b_inv_mass, b_awake, b_sleep_time, b_vel, b_ang, extent, p_inv_mass,
+                     p_awake, p_sleep_time, p_vel, ca, cb, depth, joint_a, joint_b, pa, pb,
+                     pdepth, link_a, link_b, time_to_sleep, threshold, parent, falls):
+    """The islands of bodies (nodes 0 … nb−1) and particles (nb …) in one pass: union–find
+    over the body rows ``ca``–``cb`` (particles already as nodes), the joints, the particle
+    rows ``pa``–``pb`` and the particle links; ``parent`` ends as each node's island, ``falls``
+    marks the awake movable nodes of the islands ready to sleep (``ready_islands``). Returns
+    how many. (One compiled call: as numpy steps, 2.4 ms a step on the 1000-sphere pit.)"""
+    nb = b_inv_mass.shape[0]
+    n = parent.shape[0]
+    movable = np.empty(n, np.bool_)
+    awake = np.empty(n, np.bool_)
+    sleep_time = np.empty(n)
+    for i in range(nb):
+        movable[i] = b_inv_mass[i] > 0.0
+        awake[i] = b_awake[i]
+        sleep_time[i] = b_sleep_time[i]
+    for i in range(n - nb):
+        movable[nb + i] = p_inv_mass[i] > 0.0
+        awake[nb + i] = p_awake[i]
+        sleep_time[nb + i] = p_sleep_time[i]
+    for i in range(n):
+        parent[i] = i
+    none = np.empty(0)
+    join(parent, ca, cb, depth, 0, 0, movable)
+    join(parent, joint_a, joint_b, none, 0, 0, movable)
+    join(parent, pa, pb, pdepth, nb, nb, movable)
+    join(parent, link_a, link_b, none, nb, nb, movable)
+    roots(parent)
+    speed = np.empty(n)
+    speeds(b_vel, b_ang, extent, p_vel, speed)
+    ready = np.empty(n, np.bool_)
+    ready_islands(parent, movable, awake, sleep_time, speed, time_to_sleep, threshold, ready)
+    count = 0
+    for i in range(n):
+        falls[i] = movable[i] and awake[i] and ready[parent[i]]
+        if falls[i]:
+            count += 1
+    return count
 
 
 @njit(cache=True, nogil=True)

@@ -243,6 +243,7 @@ class World:
         self._packed = None  # the last substep's particle–body view (or None)
         #: The longest still-time of an awake particle after the last step [s].
         self._longest_still = 0.0
+        self._plinks: np.ndarray | None = None
         #: The warm start of sleeping bodies' contact points, given back when they wake.
         self.sleeping_impulses = sleeping.SleepingImpulses()
         #: Body pairs (K, 2) that must share an island (joints): they sleep and wake together.
@@ -510,6 +511,7 @@ class World:
         # the world stays as it was and the user can go on with a smaller dt. With substeps,
         # the earlier substeps are undone from a copy.
         self._folded = fold(self.forces, self._gravity)
+        self._plinks = None  # made when first asked for (``_particle_links``)
         self._jump_check = needs_jump_check(self._folded[0])
         self._spring_check(self._folded[0], self.particles, self._folded[2], h)
         if not self._sleep:
@@ -666,7 +668,7 @@ class World:
         if not live.any():  # nothing moves: no rows were found, no link can wake
             p.force[~p.awake] = 0.0
             return
-        links = psleep.link_pairs(self.forces, self.contact_generators)
+        links = self._particle_links()
         while True:
             out = np.zeros(p.count, np.bool_)
             psleep.touched(c.a, c.b, c.normal, c.penetration, p.velocity, p.awake, live,
@@ -682,7 +684,14 @@ class World:
         asleep = ~p.awake
         p.force[asleep] = 0.0  # the accumulator is consumed, as by the integration
         if c.count:
-            psleep.keep_rows(c, ~psleep.rows_with_sleepers(c, p.awake))
+            psleep.leave_out_sleepers(c, p.awake)
+
+    def _particle_links(self) -> np.ndarray:
+        """This step's particle pairs that share an island (``psleep.link_pairs``), made once
+        a step when first asked for."""
+        if self._plinks is None:
+            self._plinks = psleep.link_pairs(self.forces, self.contact_generators)
+        return self._plinks
 
     def _wake_particles(self, marked: np.ndarray) -> np.ndarray:
         """Wake the islands of the sleeping particles of mask ``marked`` (and the bodies of
@@ -830,8 +839,7 @@ class World:
         slept, self._longest_still = psleep.fall_asleep(
             b, self.body_contacts, None if packed is None else packed.selected,
             self._links if b.count else partial(np.zeros, (0, 2), np.int64), self.particles,
-            self.contacts, partial(psleep.link_pairs, self.forces, self.contact_generators),
-            dt)
+            self.contacts, self._particle_links, dt)
         if slept is not None:
             self.sleeping_impulses.put_away(self.body_impulses, slept)
 
