@@ -213,11 +213,12 @@ class World:
         restitution_threshold: Closing speeds below this [m/s] do not bounce. 0 by default:
             the resting-contact trick keeps piles still without hiding any inelasticity.
         substeps: Substeps per ``step``; each runs the whole pipeline with dt / substeps.
-        sleep: Whether rigid bodies sleep: an island of touching bodies none of whose points
-            has gone 2.5 cm in 0.5 s (0.05 m/s) stops being integrated and solved until a
-            moving body touches it, a particle hits it, a force pushes it or the user moves
-            it (``rigid/islands.py``, ``rigid/sleep.py``). On by default; False gives every
-            body a full step always (bit for bit the trajectory of an engine without sleep).
+        sleep: Whether bodies and particles sleep: an island of touching (or jointed, linked)
+            bodies and particles none of whose points has gone 2.5 cm in 0.5 s (0.05 m/s)
+            stops being integrated and solved until a moving body or particle touches it, a
+            force pushes it or the user moves it (``rigid/islands.py``, ``rigid/sleep.py``,
+            ``particle_sleep.py``). On by default; False gives everything a full step always
+            (bit for bit the trajectory of an engine without sleep).
 
     Example:
         >>> import pointmass as pm
@@ -330,8 +331,8 @@ class World:
 
     @property
     def sleep(self) -> bool:
-        """Whether still islands of rigid bodies sleep (see the class docstring); turning it
-        off wakes every body."""
+        """Whether still islands of bodies and particles sleep (see the class docstring);
+        turning it off wakes every body and particle."""
         return self._sleep
 
     @sleep.setter
