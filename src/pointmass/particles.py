@@ -27,6 +27,15 @@ CHUNK = 8192
 
 _FIELDS_3 = ("position", "velocity", "force", "acceleration")
 _FIELDS_1 = ("inv_mass", "radius", "damping")
+#: Sleep state (``particle_sleep.py``), kept in snapshots like the rest: whether each particle
+#: moves, how long it has been still, the island it fell asleep with, where its still-time
+#: counts from, and the force the generators gave it when it fell asleep.
+_SLEEP_3 = ("still_position", "rest_force")
+_SLEEP_1 = ("awake", "sleep_time", "island")
+_ALL = _FIELDS_3 + _FIELDS_1 + _SLEEP_3 + _SLEEP_1
+_DTYPES = {"awake": np.bool_, "island": np.int64}
+#: Fill values of a new row (0 for the rest).
+_FILL = {"damping": 1.0, "awake": True, "island": -1}
 
 
 class Particles(RowViews):
@@ -43,6 +52,16 @@ class Particles(RowViews):
         inv_mass: Inverse mass [1/kg], shape (N,); 0 means infinite mass (immovable).
         radius: Collision radius [m], shape (N,); 0 means a point that never collides as a sphere.
         damping: Fraction of velocity kept per second, in [0, 1], shape (N,); 1 means none.
+        awake: Whether each particle moves, shape (N,), bool. A sleeping particle (``World(
+            sleep=True)``, ``particle_sleep.py``) has zero velocity, is not integrated and is in
+            no contact that the solver sees; it wakes with its island. Immovable particles are
+            always awake.
+        sleep_time: Seconds each awake particle has been still [s], shape (N,).
+        still_position: Where its still-time counts from [m], shape (N, 3) (a sleeping
+            particle's pose: writing ``position`` wakes it).
+        rest_force: The force [N] the generators gave it when it fell asleep, shape (N, 3): a
+            different force on a sleeping particle wakes it.
+        island: The island a sleeping particle fell asleep with, -1 while awake, shape (N,).
     """
 
     # The storage ``_alloc`` makes (setattr by name; declared for type checkers).
@@ -53,6 +72,11 @@ class Particles(RowViews):
     _inv_mass: np.ndarray
     _radius: np.ndarray
     _damping: np.ndarray
+    _awake: np.ndarray
+    _sleep_time: np.ndarray
+    _island: np.ndarray
+    _still_position: np.ndarray
+    _rest_force: np.ndarray
 
     def __init__(self, capacity: int = 16) -> None:
         self._count = 0
@@ -60,12 +84,14 @@ class Particles(RowViews):
 
     # -- storage -------------------------------------------------------------------------------
     def _alloc(self, capacity: int) -> None:
-        old = {name: getattr(self, "_" + name, None) for name in _FIELDS_3 + _FIELDS_1}
+        old = {name: getattr(self, "_" + name, None) for name in _ALL}
         n = self._count
-        for name in _FIELDS_3 + _FIELDS_1:
-            arr: np.ndarray = np.zeros((capacity, 3) if name in _FIELDS_3 else capacity)
-            if name == "damping":
-                arr[:] = 1.0
+        for name in _ALL:
+            wide = name in _FIELDS_3 or name in _SLEEP_3
+            arr: np.ndarray = np.zeros((capacity, 3) if wide else capacity,
+                                       _DTYPES.get(name, np.float64))
+            if name in _FILL:
+                arr[:] = _FILL[name]
             previous = old[name]
             if previous is not None:
                 arr[:n] = previous[:n]
@@ -86,7 +112,7 @@ class Particles(RowViews):
     def __len__(self) -> int:
         return self._count
 
-    _VIEW_FIELDS = _FIELDS_3 + _FIELDS_1
+    _VIEW_FIELDS = _ALL
     position = view("position", doc="Positions [m], (N, 3).")
     velocity = view("velocity", doc="Velocities [m/s], (N, 3).")
     force = view("force", doc="Force accumulator [N], (N, 3).")
@@ -95,6 +121,11 @@ class Particles(RowViews):
     inv_mass = view("inv_mass", doc="Inverse mass [1/kg], (N,).")
     radius = view("radius", doc="Radius [m], (N,).")
     damping = view("damping", doc="Fraction of velocity kept per second, (N,).")
+    awake = view("awake", doc="Whether each particle moves (not asleep), (N,) bool.")
+    sleep_time = view("sleep_time", doc="Seconds each awake particle has been still [s], (N,).")
+    island = view("island", doc="A sleeping particle's island, -1 awake, (N,).")
+    still_position = view("still_position", doc="Where the still-time counts from [m], (N, 3).")
+    rest_force = view("rest_force", doc="The generators' force when it fell asleep [N], (N, 3).")
 
     @property
     def mass(self) -> np.ndarray:
@@ -141,6 +172,11 @@ class Particles(RowViews):
         self._inv_mass[s] = inv
         self._radius[s] = rad
         self._damping[s] = damp
+        self._awake[s] = True
+        self._sleep_time[s] = 0.0
+        self._island[s] = -1
+        self._still_position[s] = pos
+        self._rest_force[s] = 0.0
         self._count += k
         self._refresh_views()
         return np.arange(s.start, s.stop, dtype=np.int64)
@@ -174,8 +210,45 @@ class Particles(RowViews):
     def pin(self, index: int) -> None:
         """Make a particle immovable (infinite mass) and stop it."""
         i = self.check_index(index)
+        self.wake(i)
         self._inv_mass[i] = 0.0
         self._velocity[i] = 0.0
+
+    # -- sleep ---------------------------------------------------------------------------------
+    def wake(self, index: int) -> None:
+        """Wake particle ``index`` and, if it was asleep, every particle of its island; its
+        still-time starts again from 0."""
+        i = self.check_index(index)
+        self._sleep_time[i] = 0.0
+        if not self._awake[i]:
+            self.wake_islands(np.array([self._island[i]]))
+
+    def wake_islands(self, islands: np.ndarray) -> np.ndarray:
+        """Wake every sleeping particle whose island is in ``islands`` (int array); their
+        still-times start from 0. Returns the mask (N,) of the particles woken."""
+        woken = ~self.awake & np.isin(self.island, islands)
+        self.awake[woken] = True
+        self.sleep_time[woken] = 0.0
+        self.island[woken] = -1
+        return woken
+
+    def sleep(self, index: int) -> None:
+        """Put particle ``index`` to sleep alone, now (an island of its own: a moving particle
+        or body that touches it wakes it). An immovable particle never sleeps: ValueError."""
+        i = self.check_index(index)
+        if self._inv_mass[i] == 0.0:
+            raise ValueError(f"particle {i} is immovable (infinite mass): it never sleeps")
+        if self._awake[i]:
+            self._awake[i] = False
+            self._island[i] = -2 - i  # a name no island built from contacts has (those are >= 0)
+            self._velocity[i] = 0.0
+            self._still_position[i] = self._position[i]
+            self._rest_force[i] = 0.0
+
+    def wake_all(self) -> None:
+        """Wake every particle."""
+        self.awake[:] = True
+        self.island[:] = -1
 
     def kinetic_energy(self) -> float:
         """Total kinetic energy ½·m·|v|² of the movable particles [J] (the same bits on any
@@ -192,7 +265,7 @@ class Particles(RowViews):
 
     def snapshot(self) -> dict[str, np.ndarray]:
         """Copies of every array, to restore with ``restore`` (a reset, a determinism check)."""
-        return {name: getattr(self, name).copy() for name in _FIELDS_3 + _FIELDS_1}
+        return {name: getattr(self, name).copy() for name in _ALL}
 
     def restore(self, snap: dict[str, np.ndarray]) -> None:
         """Return to a ``snapshot`` (particles added since are dropped)."""
@@ -201,6 +274,12 @@ class Particles(RowViews):
         self._reserve(n)
         self._count = n
         self._refresh_views()
+        if "awake" not in snap:  # a snapshot from before sleeping: every particle awake
+            self._awake[:n] = True
+            self._sleep_time[:n] = 0.0
+            self._island[:n] = -1
+            self._still_position[:n] = snap["position"]
+            self._rest_force[:n] = 0.0
         for name, arr in snap.items():
             getattr(self, "_" + name)[:n] = arr
 
@@ -352,6 +431,21 @@ class Particle:
     @damping.setter
     def damping(self, value: float) -> None:
         self.particles.damping[self.index] = check.scalar(value, "damping", low=0.0, high=1.0)
+
+    @property
+    def awake(self) -> bool:
+        """Whether the particle moves (False: asleep with its island, ``particle_sleep.py``);
+        assign True to wake it and its island, False to put it to sleep alone."""
+        return bool(self.particles.awake[self.index])
+
+    @awake.setter
+    def awake(self, value: bool) -> None:
+        if not isinstance(value, (bool, np.bool_)):
+            raise TypeError(f"awake must be True or False, got {value!r}")
+        if value:
+            self.particles.wake(self.index)
+        else:
+            self.particles.sleep(self.index)
 
     @property
     def has_finite_mass(self) -> bool:

@@ -12,6 +12,7 @@ import numpy as np
 from numba import njit, prange
 
 from . import _validate as check
+from . import particle_sleep as psleep
 from .collide import Plane
 from .contacts import ContactBuffer, ContactGenerator, friction_value, restitution_value
 from .forces import ForceGenerator, drag_force, fold
@@ -136,10 +137,13 @@ def _first_not_finite(pos, vel, start, stop):
 
 
 @njit(cache=True, nogil=True)
-def _integrate(pos, vel, force, acc, inv_mass, damping, g, k1, k2, dt, store_acc, start, stop):
+def _integrate(pos, vel, force, acc, inv_mass, damping, awake, g, k1, k2, dt, store_acc, start,
+               stop):
     """Integrate particles ``start`` to ``stop`` (a chunk); returns the first that is not
     finite afterwards, or -1. The acceleration is stored only with ``store_acc`` (when
-    something reads it: the solver's resting-contact test).
+    something reads it: the solver's resting-contact test). Sleeping particles (``awake``
+    False) are skipped, their accumulated force left for the wake test
+    (``particle_sleep.py``); with every particle awake the arithmetic is the same.
 
     Each particle's force accumulator is cleared as it is read, as Cyclone's integrate ends with
     clearAccumulator: no separate pass clears it, and a force added to ``particles.force``
@@ -153,6 +157,8 @@ def _integrate(pos, vel, force, acc, inv_mass, damping, g, k1, k2, dt, store_acc
     gx, gy, gz = g[0], g[1], g[2]
     probe = 0.0
     for i in range(start, stop):
+        if not awake[i]:
+            continue
         px, py, pz, vx, vy, vz, ax, ay, az = _integrate_particle(
             pos[i, 0], pos[i, 1], pos[i, 2], vel[i, 0], vel[i, 1], vel[i, 2],
             force[i, 0], force[i, 1], force[i, 2], inv_mass[i], damping[i], gx, gy, gz,
@@ -175,7 +181,8 @@ def _integrate(pos, vel, force, acc, inv_mass, damping, g, k1, k2, dt, store_acc
 
 
 @njit(cache=True, nogil=True, parallel=True)
-def _integrate_parallel(pos, vel, force, acc, inv_mass, damping, g, k1, k2, dt, store_acc):
+def _integrate_parallel(pos, vel, force, acc, inv_mass, damping, awake, g, k1, k2, dt,
+                        store_acc):
     """``_integrate`` on all cores, one chunk of ``CHUNK`` particles per task; returns the
     first non-finite particle in chunk order (the same for any thread count), or -1."""
     n = pos.shape[0]
@@ -183,8 +190,8 @@ def _integrate_parallel(pos, vel, force, acc, inv_mass, damping, g, k1, k2, dt, 
     bad = np.empty(chunks, np.int64)
     for c in prange(chunks):
         start, stop = c * CHUNK, min(n, (c + 1) * CHUNK)
-        bad[c] = _integrate(pos, vel, force, acc, inv_mass, damping, g, k1, k2, dt, store_acc,
-                            start, stop)
+        bad[c] = _integrate(pos, vel, force, acc, inv_mass, damping, awake, g, k1, k2, dt,
+                            store_acc, start, stop)
     first = -1
     for c in range(chunks):
         if bad[c] >= 0:
@@ -207,11 +214,12 @@ class World:
         restitution_threshold: Closing speeds below this [m/s] do not bounce. 0 by default:
             the resting-contact trick keeps piles still without hiding any inelasticity.
         substeps: Substeps per ``step``; each runs the whole pipeline with dt / substeps.
-        sleep: Whether rigid bodies sleep: an island of touching bodies none of whose points
-            has gone 2.5 cm in 0.5 s (0.05 m/s) stops being integrated and solved until a
-            moving body touches it, a particle hits it, a force pushes it or the user moves
-            it (``rigid/islands.py``, ``rigid/sleep.py``). On by default; False gives every
-            body a full step always (bit for bit the trajectory of an engine without sleep).
+        sleep: Whether bodies and particles sleep: an island of touching (or jointed, linked)
+            bodies and particles none of whose points has gone 2.5 cm in 0.5 s (0.05 m/s)
+            stops being integrated and solved until a moving body or particle touches it, a
+            force pushes it or the user moves it (``rigid/islands.py``, ``rigid/sleep.py``,
+            ``particle_sleep.py``). On by default; False gives everything a full step always
+            (bit for bit the trajectory of an engine without sleep).
 
     Example:
         >>> import pointmass as pm
@@ -234,6 +242,10 @@ class World:
         self.body_impulses = ImpulseHistory()
         self._late_contacts = BodyContacts()  # the overlaps after the drift (body_late)
         self._body_rows = None
+        self._packed = None  # the last substep's particle–body view (or None)
+        #: The longest still-time of an awake particle after the last step [s].
+        self._longest_still = 0.0
+        self._plinks: np.ndarray | None = None
         #: The warm start of sleeping bodies' contact points, given back when they wake.
         self.sleeping_impulses = sleeping.SleepingImpulses()
         #: Body pairs (K, 2) that must share an island (joints): they sleep and wake together.
@@ -322,8 +334,8 @@ class World:
 
     @property
     def sleep(self) -> bool:
-        """Whether still islands of rigid bodies sleep (see the class docstring); turning it
-        off wakes every body."""
+        """Whether still islands of bodies and particles sleep (see the class docstring);
+        turning it off wakes every body and particle."""
         return self._sleep
 
     @sleep.setter
@@ -338,6 +350,9 @@ class World:
         b = self.bodies
         if not b.awake.all():
             b.wake_islands(np.unique(b.island[~b.awake]))
+        p = self.particles
+        if not p.awake.all():
+            p.wake_all()
 
     @property
     def restitution_threshold(self) -> float:
@@ -501,6 +516,7 @@ class World:
         # the world stays as it was and the user can go on with a smaller dt. With substeps,
         # the earlier substeps are undone from a copy.
         self._folded = fold(self.forces, self._gravity)
+        self._plinks = None  # made when first asked for (``_particle_links``)
         self._jump_check = needs_jump_check(self._folded[0])
         self._spring_check(self._folded[0], self.particles, self._folded[2], h)
         if not self._sleep:
@@ -529,7 +545,7 @@ class World:
         self.time += float(dt)
         if self.bodies.count:
             self.bodies.clear_accumulators()  # user forces and torques last one step
-        if self._sleep and self.bodies.count:
+        if self._sleep and (self.bodies.count or self.particles.count):
             self._fall_asleep(float(dt))
         self._steps += 1
         pen = self.contacts.penetration
@@ -590,8 +606,9 @@ class World:
         # The acceleration is stored only where it is read: the resting-contact test of the
         # particle solver and of the body stage.
         after = bool(self.contact_generators) or self.bodies.count > 0
-        args = (p.position, p.velocity, p.force, p.acceleration, p.inv_mass, p.damping, g, k1,
-                k2, dt, after)
+        sleepers = self._sleep and p.count > 0 and self._wake_disturbed(dt)
+        args = (p.position, p.velocity, p.force, p.acceleration, p.inv_mass, p.damping, p.awake,
+                g, k1, k2, dt, after)
         if p.count >= PARALLEL_MIN_PARTICLES:
             bad = _integrate_parallel(*args)
         else:
@@ -602,11 +619,17 @@ class World:
                 f"(position {p.position[bad].tolist()}, velocity {p.velocity[bad].tolist()}); "
                 "a force is too strong for this dt, or a generator produced NaN")
 
-        # Find contacts: every contact generator appends to the buffer.
+        # Find contacts: every contact generator appends to the buffer. With particles
+        # asleep: none when nothing can disturb them, else the rows wake what they touch and
+        # those left reaching a sleeper are left out (``particle_sleep.py``).
         self.contacts.clear()
         self.contacts.dt = dt
-        for generator in self.contact_generators:
-            generator.generate(p, self.contacts)
+        live = psleep.active(p) if sleepers else None
+        if live is None or live.any():
+            for generator in self.contact_generators:
+                generator.generate(p, self.contacts)
+        if sleepers:
+            self._wake_touched(live, g, dt)
 
         # Resolve them: impacts, resting contacts and links, then interpenetration.
         solved = self.solver.solve(p, self.contacts, self.impulses, dt)
@@ -618,6 +641,73 @@ class World:
                 position_passes=solved.position_passes + rows.position_passes,
                 resolutions=solved.resolutions, cold_restart=solved.cold_restart)
         return solved
+
+    def _wake_disturbed(self, dt: float) -> bool:
+        """Before the integration of a substep of ``dt``: wake the islands of sleeping
+        particles that a force or the user disturbed (``particle_sleep.py``) and keep the
+        force of those that may fall asleep after this step; returns whether any still sleep.
+        """
+        p = self.particles
+        # Still for this long, a particle may fall asleep at the end of this step (a margin of
+        # a step for the sums of the still-time's floats).
+        candidate = psleep.TIME_TO_SLEEP - 2.0 * dt * self._substeps
+        if p.awake.all():
+            if self._longest_still < candidate:
+                return False  # none can fall asleep after this step: no rest force to keep
+            psleep.disturbed(p.force, p.rest_force, p.velocity, p.position, p.still_position,
+                             p.inv_mass, p.awake, p.sleep_time, candidate, psleep.NUDGE,
+                             np.zeros(0, np.bool_))
+            return False
+        out = np.zeros(p.count, np.bool_)
+        if psleep.disturbed(p.force, p.rest_force, p.velocity, p.position, p.still_position,
+                            p.inv_mass, p.awake, p.sleep_time, candidate, psleep.NUDGE, out):
+            self._wake_particles(out)
+        return not p.awake.all()
+
+    def _wake_touched(self, live: np.ndarray, g: np.ndarray, dt: float) -> None:
+        """After finding contacts with particles asleep: wake the islands that a row or a link
+        joins to an active particle (those woken get this substep's kick: their rows are
+        solved), until none; then leave out the rows that still reach a sleeper."""
+        p = self.particles
+        c = self.contacts
+        if not live.any():  # nothing moves: no rows were found, no link can wake
+            p.force[~p.awake] = 0.0
+            return
+        links = self._particle_links()
+        while True:
+            out = np.zeros(p.count, np.bool_)
+            psleep.touched(c.a, c.b, c.normal, c.penetration, p.velocity, p.awake, live,
+                           float(dt), out)
+            if links.shape[0]:
+                psleep.wake_linked(p, links, live, out)
+            if not out.any():
+                break
+            woken = self._wake_particles(out)
+            psleep.kick(p.velocity, p.acceleration, p.force, p.inv_mass, p.damping, woken, g,
+                        float(dt))
+            live = psleep.active(p)
+        asleep = ~p.awake
+        p.force[asleep] = 0.0  # the accumulator is consumed, as by the integration
+        if c.count:
+            psleep.leave_out_sleepers(c, p.awake)
+
+    def _particle_links(self) -> np.ndarray:
+        """This step's particle pairs that share an island (``psleep.link_pairs``), made once
+        a step when first asked for."""
+        if self._plinks is None:
+            self._plinks = psleep.link_pairs(self.forces, self.contact_generators)
+        return self._plinks
+
+    def _wake_particles(self, marked: np.ndarray) -> np.ndarray:
+        """Wake the islands of the sleeping particles of mask ``marked`` (and the bodies of
+        those islands); returns the mask of the particles woken."""
+        p = self.particles
+        labels = np.unique(p.island[marked & ~p.awake])
+        woken = p.wake_islands(labels)
+        b = self.bodies
+        if b.count and (labels < b.count).any() and not b.awake.all():
+            b.wake_islands(labels)  # an island of both: its bodies get the body stage's kick
+        return woken
 
     def _substep_bodies(self, dt: float):
         """The rigid bodies' substep: kick (gravity, forces, torques), contacts, the solver's
@@ -645,6 +735,7 @@ class World:
         try:  # the kick, and that of bodies woken while finding contacts, read the forces
             self._kick(dt, b.awake)
             packed, acc = self._body_contacts(dt, acc)
+            self._packed = packed  # the islands read its particles (``_fall_asleep``)
         finally:
             if kept is not None:
                 b.force[:], b.torque[:] = kept
@@ -709,6 +800,26 @@ class World:
                                            self._particle_restitution)
             full = acc if packed is None else np.concatenate(
                 [acc, p.acceleration[packed.selected]])
+            if packed is not None and self._sleep and not p.awake.all():
+                # a moving body wakes the sleeping particles it touches; the rows that still
+                # reach a sleeping particle are left out (``particle_sleep.py``)
+                c = self.body_contacts
+                out = np.zeros(p.count, np.bool_)
+                movers = sleeping.active(b) if live is None else live
+                if psleep.touched_by_bodies(b.count, c.a, c.b, c.normal, c.depth,
+                                            packed.selected, p.velocity, b.velocity,
+                                            b.angular_velocity, c.r_b, p.awake, movers,
+                                            float(dt), out):
+                    was = b.awake.copy()
+                    self._wake_particles(out)
+                    if (b.awake & ~was).any():
+                        self._kick(dt, b.awake & ~was)
+                    continue  # again, with the woken
+                slot = c.a >= b.count
+                reach = np.zeros(c.a.shape[0], np.bool_)
+                reach[slot] = ~p.awake[packed.selected[c.a[slot] - b.count]]
+                if reach.any():
+                    c.keep(~reach)
             if live is None:
                 return packed, full
             assert links is not None  # ``live`` is only set with sleeping on, as ``links``
@@ -726,10 +837,14 @@ class World:
         return np.concatenate([links, self.joints.body_pairs()])
 
     def _fall_asleep(self, dt: float) -> None:
-        """End of a step: islands still for long enough fall asleep (``rigid/sleep.py``)."""
+        """End of a step: islands of bodies and particles still for long enough fall asleep
+        (``rigid/sleep.py``, ``particle_sleep.py``)."""
         b = self.bodies
-        links = self._links()
-        slept = sleeping.fall_asleep(b, self.body_contacts, links, dt)
+        packed = self._packed if b.count else None
+        slept, self._longest_still = psleep.fall_asleep(
+            b, self.body_contacts, None if packed is None else packed.selected,
+            self._links if b.count else partial(np.zeros, (0, 2), np.int64), self.particles,
+            self.contacts, self._particle_links, dt)
         if slept is not None:
             self.sleeping_impulses.put_away(self.body_impulses, slept)
 
