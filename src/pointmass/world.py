@@ -25,7 +25,7 @@ from .rigid.joints import Joint
 from .rigid.particle_body import add_particle_contacts
 from .rigid.shapes import Box, Sphere
 from .rigid.step import integrate_positions, integrate_velocities, spin_error
-from .solver import ImpulseHistory, Solver, SolveStats
+from .solver import ImpulseHistory, Solver, SolveStats, body_soft
 from .solver.body_late import project_late
 from .stability import SpringCheck, jump_check, needs_jump_check
 
@@ -211,6 +211,11 @@ class World:
             moving body touches it, a particle hits it, a force pushes it or the user moves
             it (``rigid/islands.py``, ``rigid/sleep.py``). On by default; False gives every
             body a full step always (bit for bit the trajectory of an engine without sleep).
+        body_step: The rigid bodies' contact stage: "impulses" (the default: sequential
+            impulses, exact normals for small sets, position projection) or "soft" (Box2D
+            v3's soft step, ``solver/body_soft.py``: 4 substeps of soft contacts and relax
+            after one collision pass; it keeps linear and angular momentum exactly, but tall
+            towers do not stand with it yet: see that module).
 
     Example:
         >>> import pointmass as pm
@@ -223,7 +228,7 @@ class World:
 
     def __init__(self, gravity=(0.0, -9.81, 0.0), *, iterations: int | None = None,
                  resolver: str = "sequential", restitution_threshold: float = 0.0,
-                 substeps: int = 1, sleep: bool = True) -> None:
+                 substeps: int = 1, sleep: bool = True, body_step: str = "impulses") -> None:
         self.particles = Particles()
         #: Rigid bodies (``add_body``); they meet each other, every ``Plane``/``Ground`` and every
         #: particle with radius > 0 (``rigid/particle_body.py``).
@@ -261,6 +266,9 @@ class World:
         self.resolver = resolver
         self.restitution_threshold = restitution_threshold
         self.substeps = substeps
+        if body_step not in ("impulses", "soft"):
+            raise ValueError(f'body_step must be "impulses" or "soft", got {body_step!r}')
+        self._body_step = body_step
         self.time = 0.0
         #: Probes sampled after every step (``add_probe``).
         self.probes: list = []
@@ -616,6 +624,12 @@ class World:
         return solved
 
     def _substep_bodies(self, dt: float):
+        """The body stage of one substep: ``body_step`` picks the method."""
+        if self._body_step == "soft":
+            return self._substep_bodies_soft(dt)
+        return self._substep_bodies_impulses(dt)
+
+    def _substep_bodies_impulses(self, dt: float):
         """The rigid bodies' substep: kick (gravity, forces, torques), contacts, the solver's
         body stage on velocities, drift (x += v·dt, the free rotation), then its position
         half. Particles with a radius that touch a body join the stage as bodies without
@@ -640,7 +654,7 @@ class World:
         acc = np.where(w > 0.0, self._gravity + b.force * w, 0.0)
         try:  # the kick, and that of bodies woken while finding contacts, read the forces
             self._kick(dt, b.awake)
-            packed, acc = self._body_contacts(dt, acc)
+            packed, acc = self._body_contacts(dt, dt, acc)
         finally:
             if kept is not None:
                 b.force[:], b.torque[:] = kept
@@ -673,6 +687,53 @@ class World:
         self._body_rows = rows
         return rows
 
+    def _substep_bodies_soft(self, dt: float):
+        """The rigid bodies' substep: the first kick (gravity, forces, torques over
+        dt / ``body_soft.SUBSTEPS``), contacts once, then the soft step's substeps
+        (``solver/body_soft.py``: kick, warm start, soft solve, drift, relax; restitution).
+        Particles with a radius that touch a body join the stage as bodies without inertia
+        (``rigid/particle_body.py``); with none touching, the stage sees the bodies alone, as
+        in a world without particles. Sleeping bodies are skipped throughout
+        (``rigid/sleep.py``)."""
+        b = self.bodies
+        h = dt / body_soft.SUBSTEPS
+        kept = None
+        if self.body_forces:  # generators add to the user's forces for this substep only
+            kept = b.force.copy(), b.torque.copy()
+            try:
+                for generator in self.body_forces:
+                    generator.apply(b, dt)
+            except BaseException:
+                b.force[:], b.torque[:] = kept
+                raise
+        if self._sleep:
+            sleeping.wake_pushed(b)
+        p = self.particles
+        w = b.inv_mass[:, None]
+        # what this substep's forces alone give each body, for the resting-contact trick
+        acc = np.where(w > 0.0, self._gravity + b.force * w, 0.0)
+        try:  # the kicks (here, of woken bodies, and in the soft step) read the forces
+            self._kick(h, b.awake)
+            packed, acc = self._body_contacts(h, dt, acc)
+            view = b
+            if packed is not None:
+                view = packed
+                # the particles' own step gave them the whole dt's kick: keep one substep's
+                sel = packed.selected
+                packed.velocity[b.count:] -= p.acceleration[sel] * (dt - h)
+            rows = body_soft.step(view, b, self.body_contacts, acc, self.body_impulses, dt,
+                                  self.solver.restitution_threshold, self._gravity,
+                                  self.joints if self.joints else None)
+        finally:
+            if kept is not None:
+                b.force[:], b.torque[:] = kept
+        if packed is not None:
+            packed.take_positions(b, p)
+            b.velocity[:] = packed.velocity[:b.count]
+            p.velocity[packed.selected] = packed.velocity[b.count:]
+        self._body_rows = rows
+        return rows
+
     def _kick(self, dt: float, which: np.ndarray) -> None:
         """The velocity half of the bodies' integration, for the bodies of mask ``which``."""
         b = self.bodies
@@ -682,10 +743,11 @@ class World:
         if spun >= 0:
             raise spin_error(b, spun, dt, self.time)
 
-    def _body_contacts(self, dt: float, acc: np.ndarray):
+    def _body_contacts(self, h: float, dt: float, acc: np.ndarray):
         """This substep's body rows, then the particle–body rows; returns the packed view (or
-        None) and ``acc`` extended to it. A sleeping island that a row wakes gets its kick and
-        the rows are made again, until no row touches a sleeping body that should wake."""
+        None) and ``acc`` extended to it. A sleeping island that a row wakes gets its first
+        kick (of h) and the rows are made again, until no row touches a sleeping body that
+        should wake."""
         b = self.bodies
         p = self.particles
         planes = [g for g in self.contact_generators if isinstance(g, Plane)]
@@ -712,7 +774,7 @@ class World:
             if not woken.any():
                 sleeping.leave_sleepers_out(b, self.body_contacts, packed)
                 return packed, full
-            self._kick(dt, b.wake_islands(np.unique(b.island[woken])))
+            self._kick(h, b.wake_islands(np.unique(b.island[woken])))
 
     def _links(self) -> np.ndarray:
         """The body pairs (K, 2) that share an island: ``island_links`` and every joint's."""
