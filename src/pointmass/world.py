@@ -211,11 +211,11 @@ class World:
             moving body touches it, a particle hits it, a force pushes it or the user moves
             it (``rigid/islands.py``, ``rigid/sleep.py``). On by default; False gives every
             body a full step always (bit for bit the trajectory of an engine without sleep).
-        body_step: The rigid bodies' contact stage: "impulses" (the default: sequential
-            impulses, exact normals for small sets, position projection) or "soft" (Box2D
-            v3's soft step, ``solver/body_soft.py``: 4 substeps of soft contacts and relax
-            after one collision pass; it keeps linear and angular momentum exactly, but tall
-            towers do not stand with it yet: see that module).
+        body_step: The rigid bodies' contact stage: "soft" (the default: Box2D v3's soft
+            step, ``solver/body_soft.py``: after one collision pass, 4 substeps of soft
+            contacts and relax, then restitution; it keeps linear and angular momentum
+            exactly) or "impulses" (the earlier stage: sequential impulses, exact normals for
+            small sets, position projection; kept for comparison until it is removed).
 
     Example:
         >>> import pointmass as pm
@@ -228,7 +228,7 @@ class World:
 
     def __init__(self, gravity=(0.0, -9.81, 0.0), *, iterations: int | None = None,
                  resolver: str = "sequential", restitution_threshold: float = 0.0,
-                 substeps: int = 1, sleep: bool = True, body_step: str = "impulses") -> None:
+                 substeps: int = 1, sleep: bool = True, body_step: str = "soft") -> None:
         self.particles = Particles()
         #: Rigid bodies (``add_body``); they meet each other, every ``Plane``/``Ground`` and every
         #: particle with radius > 0 (``rigid/particle_body.py``).
