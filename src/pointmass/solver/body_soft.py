@@ -162,11 +162,13 @@ def _normal_velocity(vel, ang, i, rx, ry, rz, nx, ny, nz):
 
 
 @njit(cache=True, nogil=True)
-def refresh(start, ca, cb, n, la, lb, depth0, mu, inv_mass, inv_i, pos, quat, ra, rb, sep,
-            mass_n, t1, t2, fa, fb, mass_t1, mass_t2, mass_tw, radius, fmu, arm, farm):
+def refresh(start, ca, cb, n, la, lb, r0a, r0b, depth0, mu, inv_mass, inv_i, pos, quat, ra, rb,
+            sep, mass_n, t1, t2, fa, fb, mass_t1, mass_t2, mass_tw, radius, fmu, arm, farm):
     """The rows at the bodies' current pose (module docstring): each point's separation from
-    its two anchors, its arms to their midpoint, its normal mass, the manifolds' friction
-    blocks and every row's angular terms. Returns the deepest overlap [m]."""
+    its two body-fixed anchors; its arms to one point of application, the midpoint of the
+    collision's arms r0a, r0b carried along by the two centres (Box2D's anchors, which do not
+    turn with the body: a rolling ball keeps its point at the bottom); its normal mass, the
+    manifolds' friction blocks and every row's angular terms. Returns the deepest overlap."""
     deepest = 0.0
     for c in range(ca.shape[0]):
         a = ca[c]
@@ -185,11 +187,15 @@ def refresh(start, ca, cb, n, la, lb, depth0, mu, inv_mass, inv_i, pos, quat, ra
         sep[c] = s
         if -s > deepest:
             deepest = -s
-        if b >= 0:  # both bodies are pushed at the midpoint of their anchors
-            mx, my, mz = 0.5 * (px + ux), 0.5 * (py + uy), 0.5 * (pz + uz)
+        mx = pos[a, 0] + r0a[c, 0]
+        my = pos[a, 1] + r0a[c, 1]
+        mz = pos[a, 2] + r0a[c, 2]
+        if b >= 0:  # both bodies are pushed at one point: the midpoint of their arms' ends
+            mx = 0.5 * (mx + pos[b, 0] + r0b[c, 0])
+            my = 0.5 * (my + pos[b, 1] + r0b[c, 1])
+            mz = 0.5 * (mz + pos[b, 2] + r0b[c, 2])
             rb[c, 0], rb[c, 1], rb[c, 2] = mx - pos[b, 0], my - pos[b, 1], mz - pos[b, 2]
         else:
-            mx, my, mz = px, py, pz
             rb[c, 0], rb[c, 1], rb[c, 2] = mx, my, mz
         ra[c, 0], ra[c, 1], ra[c, 2] = mx - pos[a, 0], my - pos[a, 1], mz - pos[a, 2]
         k = inv_mass[a] + _arm_mass(inv_i, a, ra[c, 0], ra[c, 1], ra[c, 2], nx, ny, nz)
@@ -453,7 +459,8 @@ class _Rows:
 
 
 def _refresh(b, c: BodyContacts, r: _Rows) -> float:
-    return float(refresh(r.start, c.a, c.b, c.normal, r.la, r.lb, c.depth, c.friction,
+    return float(refresh(r.start, c.a, c.b, c.normal, r.la, r.lb, c.r_a, c.r_b, c.depth,
+                         c.friction,
                          b.inv_mass, b.inv_inertia_world, b.position, b.orientation, r.ra, r.rb,
                          r.sep, r.mass_n, r.t1, r.t2, r.fa, r.fb, r.mass_t1, r.mass_t2,
                          r.mass_tw, r.radius, r.fmu, r.arm, r.farm))
@@ -473,9 +480,10 @@ def step(view, bodies, contacts: BodyContacts, acceleration: np.ndarray,
          history: ImpulseHistory, dt: float, threshold: float, gravity: np.ndarray,
          joints=None, substeps: int = SUBSTEPS) -> SoftRows:
     """The soft step over ``dt`` (module docstring) on ``view`` (the bodies, or the packed
-    view of bodies and particles), whose first kick of dt/``substeps`` is already done;
-    ``bodies`` gives the forces, torques and damping of the kick; ``acceleration`` (one row per
-    view body) what forces alone give each one [m/s²]."""
+    view of bodies and particles), whose first kick of dt/``substeps`` is already done, with
+    the forces and torques of the whole dt (``World._kick``): the later kicks give gravity
+    and damping, ``bodies`` the damping; ``acceleration`` (one row per view body) what forces
+    alone give each one [m/s²] (for particle rows: their kick)."""
     v = view
     c = contacts
     b = bodies
@@ -503,9 +511,10 @@ def step(view, bodies, contacts: BodyContacts, acceleration: np.ndarray,
         history.clear()
     passes = 0
     jr = None
+    still = np.zeros((nb, 3))  # no forces or torques in the later kicks
     for i in range(substeps):
         if i > 0:
-            bad = kick(nb, v.velocity, v.angular_velocity, b.force, b.torque, v.inv_mass,
+            bad = kick(nb, v.velocity, v.angular_velocity, still, still, v.inv_mass,
                        v.inv_inertia, v.inv_inertia_world, b.linear_damping, b.angular_damping,
                        gravity, h, awake, acceleration)
             if bad >= 0:

@@ -12,9 +12,10 @@ with ``World()`` defaults plus the scene's own materials; dt = 1/60, g = 9.81.
 * point 8: boxes colliding without gravity (e 0 and 0.5, μ 0 and 0.5): linear and angular
   momentum about the origin.
 
-Each scene runs with ``World()`` defaults (the soft step) plus its materials. Measured before
-(the earlier "impulses" stage, ``World(body_step="impulses")``) and after are in each test's
-comment; a target not met is a ratchet at the measured value with the issue's target named.
+Each scene runs with ``World()`` defaults (the "impulses" stage; a target it misses is an
+``xfail(strict=True)`` with the measured value) and with the soft step,
+``World(body_step="soft")`` (``solver/body_soft.py``), which is not the default yet; a
+target the soft step misses is a ratchet at its measured value with the issue's target named.
 """
 
 from __future__ import annotations
@@ -32,6 +33,7 @@ from pointmass.rigid.shapes import Box, Sphere
 G = 9.81
 DT = 1.0 / 60.0
 MU = 0.5
+SOFT = {"body_step": "soft"}
 
 
 # --- point 1: towers ---------------------------------------------------------------------------
@@ -48,19 +50,31 @@ def tower(n: int, seconds: float = 60.0, **world) -> tuple[float, float]:
     return math.hypot(top[0], top[2]), float(top[1] - (n - 0.5))
 
 
-@pytest.mark.parametrize("n", [5, 10, 20, 30])
+_FALLS = pytest.mark.xfail(strict=True, reason="issue 26 point 1: the default stage's 20- and "
+                           "30-box towers fall within 60 s (top box 18 m away, on the floor)")
+
+
+@pytest.mark.parametrize("n", [5, 10, pytest.param(20, marks=_FALLS),
+                               pytest.param(30, marks=_FALLS)])
 def test_tower_stands_60_s_with_sleep_off(n):
-    # before: 5 and 10 boxes 2e-10 / 7e-10 m sideways; 20 and 30 fell (top box 18 m away).
-    # after, sideways / down: 0.06 / 0.09, 0.13 / 0.40, 0.52 / 1.7, 1.7 / 3.8 mm
+    # measured: 5 and 10 boxes 2e-10 / 7e-10 m sideways, 3e-10 / 1e-9 m down
     drift, sink = tower(n)
+    assert drift < 0.01
+    assert abs(sink) < 0.01
+
+
+@pytest.mark.parametrize("n", [5, 10, 20, 30])
+def test_soft_step_tower_stands_60_s_with_sleep_off(n):
+    # measured, sideways / down: 0.06 / 0.09, 0.13 / 0.40, 0.52 / 1.7, 1.7 / 3.8 mm
+    drift, sink = tower(n, **SOFT)
     assert drift < 0.01
     assert abs(sink) < 0.01
 
 
 # --- point 2: pyramid and pit ------------------------------------------------------------------
 
-def _pyramid_world(base: int = 20, gap: float = 0.02):
-    world = pm.World(gravity=(0.0, -G, 0.0), sleep=False)  # the default body stage
+def _pyramid_world(base: int = 20, gap: float = 0.02, **world_args):
+    world = pm.World(gravity=(0.0, -G, 0.0), sleep=False, **world_args)
     world.add(pm.Ground(restitution=0.0, friction=MU))
     bodies = []
     for row in range(base):
@@ -71,9 +85,9 @@ def _pyramid_world(base: int = 20, gap: float = 0.02):
     return world, bodies
 
 
-def pyramid(seconds: float = 10.0) -> tuple[float, float]:
+def pyramid(seconds: float = 10.0, **world_args) -> tuple[float, float]:
     """(apex drift [m], max speed [m/s]) of the 210-box pyramid after ``seconds``."""
-    world, bodies = _pyramid_world()
+    world, bodies = _pyramid_world(**world_args)
     start = bodies[-1].position.copy()
     for _ in range(round(seconds / DT)):
         world.step(DT)
@@ -97,7 +111,8 @@ def _overlap(pos, quat, half):
     return deepest
 
 
-def pit(n: int = 1000, seconds: float = 10.0, seed: int = 0) -> tuple[float, float]:
+def pit(n: int = 1000, seconds: float = 10.0, seed: int = 0,
+        **world_args) -> tuple[float, float]:
     """(max speed [m/s], deepest box overlap [m]) of the benchmark's box pit after ``seconds``."""
     rng = np.random.default_rng(seed)
     per = math.ceil(math.sqrt(n / 4))
@@ -109,7 +124,7 @@ def pit(n: int = 1000, seconds: float = 10.0, seed: int = 0) -> tuple[float, flo
     pos += rng.uniform(-0.05, 0.05, pos.shape)
     q = rng.normal(size=(n, 4))
     q /= np.linalg.norm(q, axis=1, keepdims=True)
-    world = pm.World(gravity=(0.0, -G, 0.0), sleep=False)
+    world = pm.World(gravity=(0.0, -G, 0.0), sleep=False, **world_args)
     world.add(pm.Ground(restitution=0.0, friction=MU))
     for normal in ((1, 0, 0), (-1, 0, 0), (0, 0, 1), (0, 0, -1)):
         world.add(pm.Plane(normal, -side / 2, restitution=0.0, friction=MU))
@@ -123,17 +138,35 @@ def pit(n: int = 1000, seconds: float = 10.0, seed: int = 0) -> tuple[float, flo
 
 
 @pytest.mark.slow
+@pytest.mark.xfail(strict=True, reason="issue 26 point 2: the default stage's apex drifts 8.0 mm "
+                   "in 10 s (max speed 0.39 mm/s meets its bound)")
 def test_pyramid_stands_still_with_sleep_off():
-    # before: apex 8.0 mm, max speed 0.39 mm/s; after: 0.61 mm, 0.17 mm/s
     drift, speed = pyramid()
     assert drift < 0.005
     assert speed < 0.01
 
 
 @pytest.mark.slow
+def test_soft_step_pyramid_stands_still_with_sleep_off():
+    # measured: apex 0.61 mm, max speed 0.17 mm/s
+    drift, speed = pyramid(**SOFT)
+    assert drift < 0.005
+    assert speed < 0.01
+
+
+@pytest.mark.slow
+@pytest.mark.xfail(strict=True, reason="issue 26 point 2: the default stage's pit still moves "
+                   "at 10 s: max speed 0.090 m/s (overlap 0.29 mm meets its bound)")
 def test_box_pit_comes_to_rest_with_sleep_off():
-    # before: max speed 0.090 m/s, overlap 0.29 mm; after: 1.3 mm/s, 0.09 mm
     speed, overlap = pit()
+    assert speed < 0.05
+    assert overlap < 0.005
+
+
+@pytest.mark.slow
+def test_soft_step_box_pit_comes_to_rest_with_sleep_off():
+    # measured: max speed 1.3 mm/s, overlap 0.09 mm
+    speed, overlap = pit(**SOFT)
     assert speed < 0.05
     assert overlap < 0.005
 
@@ -166,15 +199,23 @@ def drop(shape: str, height: float, e: float = 0.5, **world) -> float:
     return peak / height
 
 
+@pytest.mark.xfail(strict=True, reason="issue 26 point 5: the default stage bounces off a "
+                   "speculative point above the floor: 0.272 / 0.310 / 0.292 / 0.273 / 0.306·h "
+                   "(box and sphere alike, +9..+24 %)")
 @pytest.mark.parametrize("shape", ["box", "sphere"])
 @pytest.mark.parametrize("height", [0.9, 0.95, 1.0, 1.05, 1.1])
 def test_drop_rebounds_to_e_squared_of_its_height(shape, height):
-    # before: 0.272 / 0.310 / 0.292 / 0.273 / 0.306 (box and sphere alike: +9..+24 %).
-    # after: box 0.2480 / 0.2497 / 0.2416 / 0.2454 / 0.2499, sphere 0.2426 / 0.2430 /
+    assert drop(shape, height) == pytest.approx(0.25, rel=0.03)
+
+
+@pytest.mark.parametrize("shape", ["box", "sphere"])
+@pytest.mark.parametrize("height", [0.9, 0.95, 1.0, 1.05, 1.1])
+def test_soft_step_drop_rebounds_to_e_squared_of_its_height(shape, height):
+    # measured: box 0.2480 / 0.2497 / 0.2416 / 0.2454 / 0.2499, sphere 0.2426 / 0.2430 /
     # 0.2430 / 0.2432 / 0.2435. The issue asks for 3 %; the box from 1.0 m is at −3.4 %. Of
     # what is left, the semi-implicit flight at h = dt/4 loses h·v/2 of height on the way
     # down (0.9 %) and up (1.8 %), whatever the contact does: this is a ratchet at 4 %.
-    assert drop(shape, height) == pytest.approx(0.25, rel=0.04)
+    assert drop(shape, height, **SOFT) == pytest.approx(0.25, rel=0.04)
 
 
 # --- point 8: momentum -------------------------------------------------------------------------
@@ -213,11 +254,23 @@ def collide(e: float, mu: float, steps: int = 240, **world) -> tuple[float, floa
     return worst_p, worst_l
 
 
+_PROJECTED = pytest.mark.xfail(strict=True, reason="issue 26 point 8: the default stage's "
+                               "position projection turns the boxes: |ΔL|/|L| 3.5e-3 (e 0, μ 0)")
+
+
+@pytest.mark.parametrize(("e", "mu"), [pytest.param(0.0, 0.0, marks=_PROJECTED), (0.0, 0.5),
+                                       (0.5, 0.0), (0.5, 0.5)])
+def test_zero_gravity_collision_keeps_momentum(e, mu):
+    # measured: linear ≤ 9e-16; angular 1.7e-14, 1.3e-14, 9.9e-15
+    linear, angular = collide(e, mu)
+    assert linear < 1e-9
+    assert angular < 1e-9
+
+
 @pytest.mark.parametrize("e", [0.0, 0.5])
 @pytest.mark.parametrize("mu", [0.0, 0.5])
-def test_zero_gravity_collision_keeps_momentum(e, mu):
-    # before (e, μ = 0 0, 0 0.5, 0.5 0, 0.5 0.5): angular 3.5e-3, 1.7e-14, 1.3e-14, 9.9e-15;
-    # after: linear ≤ 4.5e-16, angular ≤ 1.4e-13 (equal and opposite impulses at one point)
-    linear, angular = collide(e, mu)
+def test_soft_step_keeps_momentum_by_construction(e, mu):
+    # measured: linear ≤ 4.5e-16, angular ≤ 1.4e-13 (equal and opposite impulses at one point)
+    linear, angular = collide(e, mu, **SOFT)
     assert linear < 1e-9
     assert angular < 1e-9
