@@ -215,7 +215,7 @@ class World:
             impulses, exact normals for small sets, position projection) or "soft" (Box2D
             v3's soft step, ``solver/body_soft.py``: after one collision pass, 4 substeps of
             soft contacts and relax, then restitution; it keeps linear and angular momentum
-            exactly and stands towers of 30 boxes, but is not the default yet: 13 tests of
+            exactly and stands towers of 30 boxes, but is not the default yet: 12 tests of
             the earlier stage's exact figures do not hold with it, see that module).
 
     Example:
