@@ -39,9 +39,9 @@ contact pass, their projection once after the substeps).
 
 Where it stands (issue 26; ``World(body_step="soft")``, not yet the default). Measured with
 unit boxes (1 kg, μ 0.5), dt 1/60, sleep off (the default stage's figures in brackets): towers
-of 5, 10, 20, 30 boxes drift 0.06, 0.13, 0.52, 1.7 mm sideways and settle 0.09–3.8 mm in 60 s
-(20 and 30 fall); the 210-box pyramid's apex 0.61 mm, 0.17 mm/s at 10 s (8.0 mm); the 1000-box
-pit 1.3 mm/s, overlap 0.09 mm (0.090 m/s); two boxes colliding without gravity keep linear and
+of 5, 10, 20, 30 boxes drift 0.06, 0.10, 1.2, 0.55 mm sideways and settle 0.09–3.8 mm in 60 s
+(20 and 30 fall); the 210-box pyramid's apex 0.61 mm, 0.27 mm/s at 10 s (8.0 mm); the 1000-box
+pit 0.44 mm/s, overlap 0.17 mm (0.090 m/s); two boxes colliding without gravity keep linear and
 angular momentum to 1.4e-13 (3.5e-3 with e 0, μ 0); a 1 m box dropped from 0.9–1.1 m with e 0.5
 rebounds to 0.2416–0.2499·h, a sphere 0.2426–0.2435·h (0.27–0.31·h; target 0.25·h ± 3 %: the
 semi-implicit flight at h loses h·v/2 of height falling and rising, 2.7 % together, whatever
@@ -90,7 +90,7 @@ FRICTION_IN_SOLVE = False
 #: stop once no row changes a velocity by more than ``TOLERANCE`` [m/s]. Repeated soft
 #: passes converge to the soft rows' own solution. One pass each leaves a tall stack's
 #: Gauss–Seidel order in it (measured, 20 s, sleep off, 240 Hz: 20 boxes fall with 1 + 1,
-#: drift 0.6 mm with up to 30 + 30; the 210-box pyramid 0.6 mm, the 1000-box pit 1.3 mm/s).
+#: drift 0.6 mm with up to 30 + 30; the 210-box pyramid 0.6 mm, the 1000-box pit 0.44 mm/s).
 SOLVE_PASSES = 30
 RELAX_PASSES = 30
 TOLERANCE = 1e-5
