@@ -216,7 +216,8 @@ class World:
             v3's soft step, ``solver/body_soft.py``: after one collision pass, 4 substeps of
             soft contacts and relax, then restitution; it keeps linear and angular momentum
             exactly and stands towers of 30 boxes, but is not the default yet: 12 tests of
-            the earlier stage's exact figures do not hold with it, see that module).
+            the earlier stage's exact figures do not hold with it, and jointed random scenes
+            explode with it; see that module).
 
     Example:
         >>> import pointmass as pm
