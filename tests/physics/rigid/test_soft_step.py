@@ -275,3 +275,13 @@ def test_soft_step_keeps_momentum_by_construction(e, mu):
     linear, angular = collide(e, mu, **SOFT)
     assert linear < 1e-9
     assert angular < 1e-9
+
+
+def test_the_soft_step_refuses_joints_it_cannot_hold_yet():
+    """Jointed random scenes blow up with the soft step (issue 26): it says so at ``add``
+    instead of letting a joint explode later."""
+    world = pm.World(**SOFT)
+    box = world.add_body(pm.Box((0.5, 0.5, 0.5)), (0, 2, 0))
+    with pytest.raises(NotImplementedError, match="body_step"):
+        world.add(pm.BallJoint(box, (0, 0.5, 0), None))
+    assert not world.joints
