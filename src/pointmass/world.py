@@ -767,8 +767,7 @@ class World:
         if packed is None:
             rows = self.solver.solve_bodies(b, self.body_contacts, acc, self.body_impulses, dt,
                                             self.joints)
-        else:
-            acc = np.concatenate([acc, p.acceleration[packed.selected]])
+        else:  # ``acc`` came back extended to the packed particles
             rows = self.solver.solve_bodies(packed, self.body_contacts, acc,
                                             self.body_impulses, dt, self.joints)
             packed.take_velocities(b, p, dt)
