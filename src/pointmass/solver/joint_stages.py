@@ -13,8 +13,10 @@ low or high − angle, whichever bound is nearer), whose accumulated impulse nev
 still open by C may close by C within the step and no more (target Ċ ≥ −C/dt: the contacts'
 speculative rule, so a fast swing stops at the limit instead of overshooting it).
 
-Drift (the separation C the step's straight-line motion leaves) is removed in the velocity rows
-by a bias, Ċ = −β·C/dt (Baumgarte; Box2D v3's soft step is the same with a spring-damper
+The targets set here are replaced in every pass by ``joint_predict``'s, which aim the point
+blocks and equality rows at the pose the step ends in; these remain for the energy guard's
+redo (``body_energy``). Drift (the separation C the step's straight-line motion leaves) is
+removed in the velocity rows by a bias, Ċ = −β·C/dt (Baumgarte; Box2D v3's soft step is the same with a spring-damper
 rate), and what exceeds a slop after the drift by projection (``joint_project``). Measured
 alone, projection (Box2D v2's ``SolvePositionConstraints``) moves the bodies without their
 velocities, so every step the next solve throws away the mismatch: a jointed pair tumbling
