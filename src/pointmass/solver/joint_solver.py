@@ -160,21 +160,6 @@ def velocity_pass(bodies, joints, rows: JointRows) -> float:
     return change
 
 
-def allowance(joints, rows: JointRows | None) -> float:
-    """The kinetic energy [J] the joints' rows may add to a velocity solve: Σ λ·target over
-    their point blocks and equality rows (for rows met exactly from a cold start the gain is
-    λ·t − ½·λᵀKλ ≤ λ·t). A joint shut at the end of a step must turn its bodies' velocity,
-    and an impulse across a velocity lengthens it (``joint_predict``): a free jointed pair
-    turning at constant ω gains that and loses it again in its position, 0 on average."""
-    if rows is None or not rows.predict:
-        return 0.0
-    point = joints.point
-    work = float(np.einsum("jk,jk->", point, rows.bias))
-    equal = rows.row == js.EQUAL
-    work += float((rows.lam[equal] * rows.target[equal]).sum())
-    return max(work, 0.0)
-
-
 def keep(joints, rows: JointRows) -> None:
     """Keep this step's angular impulses for the next warm start (the point block's already
     accumulate in ``joints.point``)."""
