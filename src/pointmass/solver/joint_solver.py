@@ -58,8 +58,7 @@ class JointRows:
     #: (``joint_predict``); False: the targets ``prepare`` set stay (the energy guard's redo).
     dt: float = 0.0
     predict: bool = True
-    #: What a step may leave of each joint's error now (J, 6): (1 − β)·C of the point block's
-    #: 3 rows and of the 3 angular slots (``joint_predict``).
+    #: What a step may leave of each joint's gap now (J, 3): (1 − β)·C (``joint_predict``).
     keep: np.ndarray | None = None
 
 
@@ -83,8 +82,7 @@ def prepare(bodies, joints, dt: float) -> JointRows:
                rows.axis, rows.mass, rows.target, rows.row)
     rows.tree = _factor(b, j, rows, movable, joints.point, dt)
     # the errors now, from the Baumgarte targets js.prepare set (−β·C/dt)
-    rows.keep = np.concatenate([rows.bias, np.where(rows.row == js.EQUAL, rows.target, 0.0)],
-                               axis=1) * (-(1.0 - BETA) * dt / BETA)
+    rows.keep = rows.bias * (-(1.0 - BETA) * dt / BETA)
     return rows
 
 
@@ -139,10 +137,9 @@ def velocity_pass(bodies, joints, rows: JointRows) -> float:
     if rows.predict:
         n = b.inv_mass.shape[0]
         change = float(joint_predict.end_targets(
-            j.a, j.b, j.local_a, j.local_b, j.frame_a, j.frame_b, j.kind, j.limits, b.position,
-            b.orientation, b.velocity, b.angular_velocity, b.inv_inertia, rows.dt, rows.mode,
-            rows.ra, rows.rb, rows.axis, rows.row, rows.keep, rows.bias, rows.target,
-            np.empty((n, 3)), np.empty((n, 4))))
+            j.a, j.b, j.local_a, j.local_b, b.position, b.orientation, b.velocity,
+            b.angular_velocity, b.inv_inertia, rows.dt, rows.mode, rows.ra, rows.rb, rows.keep,
+            rows.bias, np.empty((n, 3)), np.empty((n, 4))))
     change = max(change, float(js.solve_pass(
         j.a, j.b, rows.ra, rows.rb, rows.kmat, rows.bias, rows.axis, rows.mass, rows.target,
         rows.row, b.inv_mass, b.inv_inertia_world, b.velocity, b.angular_velocity,

@@ -13,8 +13,8 @@ low or high − angle, whichever bound is nearer), whose accumulated impulse nev
 still open by C may close by C within the step and no more (target Ċ ≥ −C/dt: the contacts'
 speculative rule, so a fast swing stops at the limit instead of overshooting it).
 
-For the joints of the exact solve (``joint_tree`` DIRECT, LOOP) the point blocks' and equality
-rows' targets set here are replaced in every pass by ``joint_predict``'s, which aim at the pose
+For the joints of the exact solve (``joint_tree`` DIRECT, LOOP) the point blocks'
+targets set here are replaced in every pass by ``joint_predict``'s, which aim at the pose
 the step ends in; these stay for the joints left to Gauss–Seidel and for the energy guard's
 redo (``body_energy``). Drift (the separation C the step's straight-line motion leaves) is
 removed in the velocity rows by a bias, Ċ = −β·C/dt (Baumgarte; Box2D v3's soft step is the
