@@ -77,6 +77,7 @@ def redo(solver, b, c, rows, joints, v0, w0, energy0: float, max_passes: int) ->
     if rows.joints is not None:
         r = rows.joints
         r.bias[:] = 0.0
+        r.predict = False
         r.target[r.row == js.EQUAL] = 0.0  # an equality row's λ has either sign
         np.minimum(r.target, 0.0, out=r.target)  # a limit's never pulls: −C/dt may stay
         r.mode[r.mode >= jt.DIRECT] = jt.ITERATIVE

@@ -100,13 +100,41 @@ def _edge(nodes, n, ja, ra, rb, child, parent_node, out):
 
 
 @njit(cache=True, nogil=True)
-def geometric(ja, jb, mode, ra, rb, point, inv_inertia, dt, extra):
+def _across(m, ux, uy, uz):
+    """Largest u·M·u over the unit vectors u across the unit ``(ux, uy, uz)`` (M symmetric,
+    3×3): the largest eigenvalue of P·M·P, P = 1 − ûûᵀ, whose third one is 0."""
+    u = (ux, uy, uz)
+    p = np.empty((3, 3))
+    for a in range(3):
+        for b in range(3):
+            p[a, b] = (1.0 if a == b else 0.0) - u[a] * u[b]
+    pm = np.zeros((3, 3))
+    for a in range(3):
+        for b in range(3):
+            x = 0.0
+            for c in range(3):
+                for d in range(3):
+                    x += p[a, c] * m[c, d] * p[d, b]
+            pm[a, b] = x
+    trace = pm[0, 0] + pm[1, 1] + pm[2, 2]
+    square = 0.0
+    for a in range(3):
+        for b in range(3):
+            square += pm[a, b] * pm[a, b]
+    return 0.5 * (trace + np.sqrt(max(2.0 * square - trace * trace, 0.0)))
+
+
+@njit(cache=True, nogil=True)
+def geometric(ja, jb, mode, ra, rb, point, inv_i, dt, extra):
     """The inertia [kg·m²] each body's angular block gains from its joints' tension, into
     ``extra`` (N, 3, 3) (module docstring, "Geometric stiffness"), for the DIRECT joints
-    (``mode`` 2): per joint end pulled
-    outward along its arm r by the impulse t = p·r̂ > 0 [N·s] (last step's, ``point``),
-    dt·t·|r|·(1 − r̂r̂ᵀ), scaled by max(0, 1 − 1/ρ) where ρ = dt·Σt·|r| / I_min, so that a
-    body whose alignment mode has ω·dt ≤ 1 gains nothing and a faster one is held at 1."""
+    (``mode`` 2): per joint end pulled outward along its arm r by the impulse t = p·r̂ > 0
+    [N·s] (last step's, ``point``), g·(1 − r̂r̂ᵀ) with g = dt·t·|r|, scaled by
+    max(0, 1 − 1/ρ) where ρ = Σ g·(largest u·I⁻¹_world·u across r̂) is (ω·dt)² of the
+    body's alignment mode, so that a body whose mode has ω·dt ≤ 1 gains nothing and a faster
+    one is held at 1. (Across the arm: a slender link pulled along its length turns against
+    its large moments; measured with its smallest, the links of a double pendulum of 0.5 m
+    boxes were stiffened at 12 rad/s and lost 23 % of their energy in 20 s.)"""
     extra[:] = 0.0
     load = np.zeros(extra.shape[0])
     for j in range(ja.shape[0]):
@@ -127,17 +155,13 @@ def geometric(ja, jb, mode, ra, rb, point, inv_inertia, dt, extra):
             if pull <= 0.0:
                 continue  # compression: its stiffness does not restore
             g = dt * pull * size
-            load[i] += g
+            load[i] += g * _across(inv_i[i], ux, uy, uz)
             u = (ux, uy, uz)
             for a in range(3):
                 for b in range(3):
                     extra[i, a, b] += g * ((1.0 if a == b else 0.0) - u[a] * u[b])
     for i in range(extra.shape[0]):
-        largest = max(inv_inertia[i, 0], inv_inertia[i, 1], inv_inertia[i, 2])
-        if load[i] == 0.0 or largest == 0.0:  # no pull, or an immovable body (not a node)
-            continue
-        smallest = 1.0 / largest
-        rho = load[i] / smallest
+        rho = load[i]
         scale = 1.0 - 1.0 / rho if rho > 1.0 else 0.0
         for a in range(3):
             for b in range(3):

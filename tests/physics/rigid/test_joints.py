@@ -51,11 +51,13 @@ def test_a_box_on_a_ball_joint_swings_with_the_compound_pendulum_period():
     assert gap < 1e-3
 
 
-def test_a_large_swing_never_gains_energy():
-    """A 60° swing for 10 s: the mean energy over each period (semi-implicit Euler's energy
-    wobbles within a period) never grows, no later moment has more energy than the first
-    period's peak, and the joint takes little: < 10 % of the swing's energy in 10 s
-    (measured 0.7 % a period at dt 1/60: the bias's inelastic correction of the drift)."""
+def test_a_large_swing_keeps_its_energy():
+    """A 60° swing for 10 s: semi-implicit Euler's energy wobbles within a period, but the
+    mean over each period stays where it was (within 1e-4 of the swing's energy; measured
+    4e-6: the joints aim at the end pose, ``solver/joint_predict``, and take nothing, where
+    the drift bias used to take 0.7 % a period), no later moment has more energy than the
+    first period's peak (+1e-4 of the swing), and the joint stays shut (< 1 µm; measured
+    2e-10 m)."""
     world, body, joint = _pendulum(math.radians(60))
     swing = 2.0 * G * 0.5 * (1 - math.cos(math.radians(60)))
     energy, x = [], []
@@ -66,11 +68,10 @@ def test_a_large_swing_never_gains_energy():
     energy, x = np.array(energy), np.array(x)
     starts = [i for i in range(1, len(x)) if x[i - 1] < 0.0 <= x[i]]
     assert len(starts) >= 5
-    means = [energy[u:v].mean() for u, v in itertools.pairwise(starts)]
-    assert all(later <= earlier + 1e-9 for earlier, later in itertools.pairwise(means))
-    assert energy[starts[1]:].max() <= energy[:starts[1]].max() + 1e-9
-    assert means[0] - means[-1] < 0.1 * swing
-    assert joint.separation() < 3e-3  # the step's drift at 4 rad/s, ~1.5 mm after the bias
+    means = np.array([energy[u:v].mean() for u, v in itertools.pairwise(starts)])
+    assert np.abs(means - means[0]).max() < 1e-4 * swing
+    assert energy[starts[1]:].max() <= energy[:starts[1]].max() + 1e-4 * swing
+    assert joint.separation() < 1e-6
 
 
 def test_a_chain_of_ten_boxes_hangs_still_and_closed():
@@ -101,8 +102,10 @@ def _momenta(world):
 
 def test_a_free_jointed_pair_keeps_its_momentum_and_angular_momentum():
     """No gravity: two boxes on one joint, turning together and flying, for 10 s. Linear
-    momentum to rounding, angular momentum (about the origin) within 1 % (measured 0.13 %), and
-    the energy never grows."""
+    momentum to rounding, angular momentum (about the origin) within 1 % (measured 0.17 %), and
+    the energy never grows (the energy guard, ``body_energy``: a step whose joint solve would
+    gain, as aiming at the end pose does by the chord's O((ω·dt)²), is redone without
+    aiming; measured −0.09 % in 10 s)."""
     world = pm.World(gravity=(0.0, 0.0, 0.0))
     omega = np.array([0.3, 0.5, 2.0])
     centre = np.array([0.5 / 3, 0.0, 0.0])  # the pair's centre of mass

@@ -1,0 +1,164 @@
+"""Issue 26, acceptance point 6: joints that hold and keep energy. Ball-joint and hinge
+pendulums and a double pendulum of two boxes, no damping, ``World()`` defaults, dt = 1/60,
+20 s each: the joint gap < 0.5 mm and the energy within ±0.5 % at every step.
+
+The energy is measured as a fraction of the energy the swing moves (m·g·L for a pendulum
+released level, whose total is 0 with the potential's zero at the pivot): a pendulum released
+level has no other scale.
+
+What is met and what is not (measured, this machine):
+- the gap: < 1e-9 m in every scene (before, 5.0 mm: the projection's slop; the joints now aim
+  at the pose the step ends in, ``solver/joint_predict``);
+- the energy no longer drifts (before: −9.4 % … +1.5 % for the pendulum, −37 % … 0 % and
+  −36 % at the end for the double one), but KE + PE still swings by semi-implicit Euler's own
+  first-order error, ±2.3 % of m·g·L at dt 1/60 for the exact pendulum in its angle, which no
+  joint solve can take out of a first-order step: measured −2.2 … +2.5 % (box), −2.8 …
+  +3.1 % (double). Those tests keep the measured band as a ratchet; the issue's ±0.5 % is met
+  with 8 substeps for the single pendulums (tested below; the double pendulum's is an
+  xfail(strict): the energy guard's redo), and its own xfail(strict) records it at the
+  defaults. What the integrator keeps, its modified energy
+  E + (dt/2)·Σ m·g⃗·v (to first order semi-implicit Euler's shadow Hamiltonian), moves by
+  +0.3 % (box), +0.6 % (sphere) in 20 s, +0.9 % without a trend (double): ``SHADOW``.
+"""
+
+import functools
+import math
+
+import pytest
+
+import pointmass as pm
+from pointmass.rigid.joints import BallJoint, HingeJoint
+from pointmass.rigid.shapes import Box, Sphere
+
+DT = 1 / 60
+G = 9.81
+STEPS = 1200  # 20 s
+#: The issue's targets.
+GAP = 0.5e-3
+ENERGY = 0.005
+
+
+def _pendulum(joint: str, shape: str, substeps: int = 1):
+    """1 kg on a 1 m arm from a world anchor at the origin, released level (along +x)."""
+    world = pm.World(gravity=(0.0, -G, 0.0), substeps=substeps)
+    body = world.add_body(Box((0.1, 0.1, 0.1)) if shape == "box" else Sphere(0.1),
+                          (1.0, 0.0, 0.0), mass=1.0)
+    if joint == "ball":
+        world.add(BallJoint(body, (-1.0, 0.0, 0.0)))
+    else:
+        world.add(HingeJoint(body, (-1.0, 0.0, 0.0), axis=(0.0, 0.0, 1.0)))
+    return world, 1.0 * G * 1.0
+
+
+def _double(substeps: int = 1):
+    """Two 1 kg boxes 0.5 m long on ball joints: the upper one level from the world anchor at
+    the origin, the lower one hanging from its tip bent 45° below it; the energy it moves is
+    its height above both boxes hanging straight down."""
+    world = pm.World(gravity=(0.0, -G, 0.0), substeps=substeps)
+    upper = world.add_body(Box((0.25, 0.05, 0.05)), (0.25, 0.0, 0.0), mass=1.0)
+    bend = math.radians(-45.0)
+    lower = world.add_body(Box((0.25, 0.05, 0.05)),
+                           (0.5 + 0.25 * math.cos(bend), 0.25 * math.sin(bend), 0.0),
+                           (math.cos(bend / 2), 0.0, 0.0, math.sin(bend / 2)), mass=1.0)
+    world.add(BallJoint(upper, (-0.25, 0.0, 0.0)))
+    world.add(BallJoint(lower, (-0.25, 0.0, 0.0), upper))
+    return world, world.potential_energy() - (-G * 0.25 - G * 0.75)
+
+
+def _swing(world, scale):
+    """20 s: the largest joint gap [m], the energy's band as a fraction of ``scale`` (low,
+    high), and the band of the modified energy E + (dt/2)·Σ m·g⃗·v."""
+    b = world.bodies
+    mass = 1.0 / b.inv_mass
+    h = DT / world.substeps
+
+    def energies():
+        e = world.kinetic_energy() + world.potential_energy()
+        return e, e - 0.5 * h * G * float(mass @ b.velocity[:, 1])  # g⃗ = (0, −G, 0)
+
+    e0, m0 = energies()
+    gap, band, shadow = 0.0, [0.0, 0.0], [0.0, 0.0]
+    for _ in range(STEPS):
+        world.step(DT)
+        gap = max(gap, float(world.joints.separations().max()))
+        e, m = energies()
+        for out, x in ((band, (e - e0) / scale), (shadow, (m - m0) / scale)):
+            out[0], out[1] = min(out[0], x), max(out[1], x)
+    return gap, band, shadow
+
+
+SCENES = {
+    "ball box": lambda s=1: _pendulum("ball", "box", s),
+    "ball sphere": lambda s=1: _pendulum("ball", "sphere", s),
+    "hinge box": lambda s=1: _pendulum("hinge", "box", s),
+    "double": _double,
+}
+#: Energy band at the defaults (the ratchet: measured low, high, as fractions of the swing's
+#: energy; the issue's target is ±0.5 %). Before (main at 59c48e3): ball box −9.36 … +1.51 %,
+#: sphere −9.14 … +1.53 %, hinge −9.36 … +1.51 %, double −36.5 … +0.0 %.
+MEASURED = {
+    "ball box": (-0.0222, 0.0249),
+    "ball sphere": (-0.0222, 0.0289),
+    "hinge box": (-0.0222, 0.0249),
+    "double": (-0.0279, 0.0314),
+}
+
+
+@functools.cache
+def _result(name: str, substeps: int = 1):
+    """Each scene is run once per substep count and shared by the tests that read it."""
+    return _swing(*SCENES[name](substeps))
+
+
+@pytest.mark.parametrize("name", list(SCENES))
+def test_the_joints_stay_shut_and_the_energy_only_wobbles_at_the_defaults(name):
+    """Gap < 0.5 mm (measured < 1e-9 m; before 5.0 mm in every scene). Energy within the
+    measured band + 0.1 % (module docstring: semi-implicit Euler's first-order wobble)."""
+    gap, band, _ = _result(name)
+    assert gap < GAP
+    low, high = MEASURED[name]
+    assert band[0] >= low - 0.001
+    assert band[1] <= high + 0.001
+
+
+#: The band of the modified energy E + (dt/2)·Σ m·g⃗·v over 20 s at the defaults (measured;
+#: a ratchet): it climbs slowly in the single pendulums, +0.016 %/s (box) and +0.03 %/s
+#: (sphere), which the start pose's arms for the turn may explain (the step is SHAKE for the
+#: centres, not a symplectic scheme for the bodies' rotation); the double pendulum's
+#: oscillates within +0.9 % without a trend.
+SHADOW = {"ball box": 0.0032, "ball sphere": 0.0062, "hinge box": 0.0032, "double": 0.0090}
+
+
+@pytest.mark.parametrize("name", list(SCENES))
+def test_the_integrators_modified_energy_stays_within_its_measured_band(name):
+    """What semi-implicit Euler keeps (its shadow energy to first order) moves by < 1 % of
+    the swing's energy in 20 s (measured: ``SHADOW``; the raw energy swings ±2–3 %)."""
+    _, _, shadow = _result(name)
+    assert shadow[0] >= -0.0005
+    assert shadow[1] <= SHADOW[name] + 0.0005
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("name", ["ball box", "ball sphere", "hinge box", pytest.param(
+    "double", marks=pytest.mark.xfail(strict=True, reason=(
+        "the energy guard (solver/body_energy) redoes every substep whose aimed joint solve "
+        "gains kinetic energy (the chord's O((ω·dt)²)) with the Baumgarte rows: at 8 "
+        "substeps the double pendulum then opens 5.0 mm and loses 42 % in 20 s; allowing "
+        "the chord's work past the guard met ±0.5 % here but let fuzz scenes gain up to "
+        "63 % in a step")))])
+def test_with_eight_substeps_the_energy_is_within_half_a_percent(name):
+    """The issue's target, met once semi-implicit Euler's own error is small enough: 8
+    substeps (dt/8 = 1/480 s). Gap < 0.5 mm, energy within ±0.5 % at every step."""
+    gap, band, _ = _result(name, 8)
+    assert gap < GAP
+    assert -ENERGY <= band[0] and band[1] <= ENERGY
+
+
+@pytest.mark.xfail(strict=True, reason="issue 26 point 6 at World() defaults: semi-implicit "
+                   "Euler at dt 1/60 swings KE + PE by ±2.3 % of m·g·L (±3 % for the double "
+                   "pendulum) whatever the joints do; met with 8 substeps")
+@pytest.mark.parametrize("name", list(SCENES))
+def test_issue_26_point_6_energy_at_the_defaults(name):
+    gap, band, _ = _result(name)
+    assert gap < GAP
+    assert -ENERGY <= band[0] and band[1] <= ENERGY
