@@ -46,7 +46,7 @@ angular momentum to 1.4e-13 (3.5e-3 with e 0, μ 0); a 1 m box dropped from 0.9�
 rebounds to 0.2416–0.2499·h, a sphere 0.2426–0.2435·h (0.27–0.31·h; target 0.25·h ± 3 %: the
 semi-implicit flight at h loses h·v/2 of height falling and rising, 2.7 % together, whatever
 the contact does). Not yet the default because 12 tests of the earlier stage's exact figures do
-not hold with it (the branch's report lists them: a rotation cap now per substep, exact stepper
+not hold with it (a rotation cap now per substep, exact stepper
 equality, −e to 1e-4 on a corner, 5/7 rolling to 1e-6, a stack converged to 1e-9, buoyancy and
 spring equilibria, a pinned box's topple), and because the random scenes of
 benchmarks/rigid_fuzz.py (seeds 0–99) are far worse with it: 17 explosions, every one with
