@@ -23,8 +23,8 @@ Wakes a sleeping particle's island (all of it, its still-times back to 0):
   Gravity and drag on all particles are folded into the integration and never reach the
   accumulator: they wake nothing (a sleeping particle is at rest, so drag is 0 and gravity is
   what its contacts held);
-- a position or velocity written by the user (a sleeping particle has velocity 0 and sits at
-  ``still_position``).
+- a position, velocity or mass written by the user (a sleeping particle has velocity 0, sits
+  at ``still_position`` and keeps ``rest_inv_mass``).
 
 A sleeping particle is not integrated, and the rows that reach it (after the wakes: speculative
 gaps that stay open this step) are left out of the solve, as rows to sleeping bodies are. A
@@ -51,13 +51,14 @@ TIME_TO_SLEEP = isl.TIME_TO_SLEEP
 
 
 @njit(cache=True, nogil=True)
-def disturbed(force, rest_force, velocity, position, still_position, inv_mass, awake,
-              sleep_time, candidate, nudge, out):
+def disturbed(force, rest_force, velocity, position, still_position, inv_mass, rest_inv_mass,
+              awake, sleep_time, candidate, nudge, out):
     """Before the integration: mark in ``out`` each sleeping particle whose accumulated force
     differs from its ``rest_force`` by more than would change its velocity by ``nudge`` [m/s²]
     (|Δf|·w: a spring whose damping term fell to 0 as it fell asleep does not wake it; a push
     that would bring it to the sleep speed within the time to sleep does), or whose velocity is
-    not 0, or that is not where it fell asleep (the user wrote to it); for awake ones, keep the
+    not 0, or that is not where it fell asleep, or whose mass changed (the user wrote to it);
+    for awake ones, keep the
     force in ``rest_force`` (if it falls asleep after this step, the force it sleeps under;
     only those still for ``candidate`` [s] or more can). Returns how many were marked."""
     count = 0
@@ -71,7 +72,7 @@ def disturbed(force, rest_force, velocity, position, still_position, inv_mass, a
         if w == 0.0:
             continue
         change = 0.0
-        moved = False
+        moved = w != rest_inv_mass[i]  # its mass was changed
         for k in range(3):
             change += (force[i, k] - rest_force[i, k]) ** 2
             if velocity[i, k] != 0.0 or position[i, k] != still_position[i, k]:
@@ -387,6 +388,7 @@ def fall_asleep(bodies, body_contacts, selected, body_links, particles, contacts
         p.island[slept_p] = parent[nb:][slept_p]
         p.velocity[slept_p] = 0.0
         p.still_position[slept_p] = p.position[slept_p]
+        p.rest_inv_mass[slept_p] = p.inv_mass[slept_p]
     return (slept_b if slept_b.any() else None), longest
 
 

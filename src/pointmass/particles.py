@@ -31,7 +31,7 @@ _FIELDS_1 = ("inv_mass", "radius", "damping")
 #: moves, how long it has been still, the island it fell asleep with, where its still-time
 #: counts from, and the force the generators gave it when it fell asleep.
 _SLEEP_3 = ("still_position", "rest_force")
-_SLEEP_1 = ("awake", "sleep_time", "island")
+_SLEEP_1 = ("awake", "sleep_time", "island", "rest_inv_mass")
 _ALL = _FIELDS_3 + _FIELDS_1 + _SLEEP_3 + _SLEEP_1
 _DTYPES = {"awake": np.bool_, "island": np.int64}
 #: Fill values of a new row (0 for the rest).
@@ -61,6 +61,8 @@ class Particles(RowViews):
             particle's pose: writing ``position`` wakes it).
         rest_force: The force [N] the generators gave it when it fell asleep, shape (N, 3): a
             different force on a sleeping particle wakes it.
+        rest_inv_mass: Its inverse mass when it fell asleep, shape (N,): a mass changed since
+            (a demo's load spread over particles as mass) wakes it.
         island: The island a sleeping particle fell asleep with, -1 while awake, shape (N,).
     """
 
@@ -77,6 +79,7 @@ class Particles(RowViews):
     _island: np.ndarray
     _still_position: np.ndarray
     _rest_force: np.ndarray
+    _rest_inv_mass: np.ndarray
 
     def __init__(self, capacity: int = 16) -> None:
         self._count = 0
@@ -126,6 +129,7 @@ class Particles(RowViews):
     island = view("island", doc="A sleeping particle's island, -1 awake, (N,).")
     still_position = view("still_position", doc="Where the still-time counts from [m], (N, 3).")
     rest_force = view("rest_force", doc="The generators' force when it fell asleep [N], (N, 3).")
+    rest_inv_mass = view("rest_inv_mass", doc="Inverse mass when it fell asleep [1/kg], (N,).")
 
     @property
     def mass(self) -> np.ndarray:
@@ -244,6 +248,7 @@ class Particles(RowViews):
             self._velocity[i] = 0.0
             self._still_position[i] = self._position[i]
             self._rest_force[i] = 0.0
+            self._rest_inv_mass[i] = self._inv_mass[i]
 
     def wake_all(self) -> None:
         """Wake every particle."""
@@ -280,6 +285,7 @@ class Particles(RowViews):
             self._island[:n] = -1
             self._still_position[:n] = snap["position"]
             self._rest_force[:n] = 0.0
+            self._rest_inv_mass[:n] = snap["inv_mass"]
         for name, arr in snap.items():
             getattr(self, "_" + name)[:n] = arr
 

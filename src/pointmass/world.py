@@ -673,12 +673,14 @@ class World:
             if self._longest_still < candidate:
                 return False  # none can fall asleep after this step: no rest force to keep
             psleep.disturbed(p.force, p.rest_force, p.velocity, p.position, p.still_position,
-                             p.inv_mass, p.awake, p.sleep_time, candidate, psleep.NUDGE,
+                             p.inv_mass, p.rest_inv_mass, p.awake, p.sleep_time, candidate,
+                             psleep.NUDGE,
                              np.zeros(0, np.bool_))
             return False
         out = np.zeros(p.count, np.bool_)
         if psleep.disturbed(p.force, p.rest_force, p.velocity, p.position, p.still_position,
-                            p.inv_mass, p.awake, p.sleep_time, candidate, psleep.NUDGE, out):
+                            p.inv_mass, p.rest_inv_mass, p.awake, p.sleep_time, candidate,
+                             psleep.NUDGE, out):
             self._wake_particles(out)
         return not p.awake.all()
 

@@ -274,3 +274,13 @@ def test_a_particle_handle_puts_to_sleep_and_wakes():
         world.particles[pinned].awake = False
     with pytest.raises(TypeError, match="awake"):
         world.particles[i].awake = 1
+
+
+def test_a_mass_written_to_a_sleeper_wakes_it():
+    """The platform demo spreads its load over the truss as mass: a truss asleep must feel it."""
+    world = _ground_world()
+    i = _resting(world)
+    _until_asleep(world)
+    world.particles.inv_mass[i] = 0.5
+    world.step(DT)
+    assert world.particles.awake[i]
