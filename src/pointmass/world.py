@@ -646,7 +646,7 @@ class World:
         if live is None or live.any():
             for generator in self.contact_generators:
                 generator.generate(p, self.contacts)
-        if sleepers:
+        if live is not None:  # particles asleep (``sleepers``)
             self._wake_touched(live, g, dt)
 
         # Resolve them: impacts, resting contacts and links, then interpenetration.

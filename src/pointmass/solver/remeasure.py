@@ -127,6 +127,12 @@ def merit(depths, bil):
     return total
 
 
+#: The largest w·(λ/ℓ) a particle's metric takes (see ``stiff_metric``): a million times its
+#: inverse mass is a direction as good as rigid, and keeps the 3×3 adjugate's cancellation
+#: to ~1e-4 of a determinant ≥ 1.
+STIFF_CAP = 1e6
+
+
 @njit(cache=True, nogil=True)
 def stiff_metric(parts, col, inv_mass, ca, cb, n, length, tension):
     """The inverse of each particle's metric for the Newton step (K, 3, 3): its mass plus the
@@ -148,6 +154,8 @@ def stiff_metric(parts, col, inv_mass, ca, cb, n, length, tension):
         if length[c] <= 0.0 or tension[c] <= 0.0:
             continue
         s = tension[c] / length[c]
+        if not math.isfinite(s):
+            continue
         for p_index in (ca[c], cb[c]):
             if p_index < 0:
                 continue
@@ -160,20 +168,28 @@ def stiff_metric(parts, col, inv_mass, ca, cb, n, length, tension):
         w = inv_mass[parts[p]]
         if w <= 0.0:
             continue  # immovable: a zero block
-        # w·(I + w·H)⁻¹, H the stiffness (a symmetric 3×3 inverse by its adjugate)
-        a00 = 1.0 + w * stiff[p, 0, 0]
-        a11 = 1.0 + w * stiff[p, 1, 1]
-        a22 = 1.0 + w * stiff[p, 2, 2]
-        a01 = w * stiff[p, 0, 1]
-        a02 = w * stiff[p, 0, 2]
-        a12 = w * stiff[p, 1, 2]
+        # w·(I + w·H)⁻¹, H the stiffness (a symmetric 3×3 inverse by its adjugate). w·H is
+        # capped at STIFF_CAP: past it a direction is as good as rigid, and the adjugate of a
+        # larger one lost the determinant to cancellation (0, then a division by zero: a
+        # random force-free scene, hypothesis seed 733907, a link of a few µm under tension).
+        largest = w * max(stiff[p, 0, 0], stiff[p, 1, 1], stiff[p, 2, 2])
+        q = w if largest <= STIFF_CAP else w * STIFF_CAP / largest
+        a00 = 1.0 + q * stiff[p, 0, 0]
+        a11 = 1.0 + q * stiff[p, 1, 1]
+        a22 = 1.0 + q * stiff[p, 2, 2]
+        a01 = q * stiff[p, 0, 1]
+        a02 = q * stiff[p, 0, 2]
+        a12 = q * stiff[p, 1, 2]
         c00 = a11 * a22 - a12 * a12
         c01 = a02 * a12 - a01 * a22
         c02 = a01 * a12 - a02 * a11
         c11 = a00 * a22 - a02 * a02
         c12 = a01 * a02 - a00 * a12
         c22 = a00 * a11 - a01 * a01
-        f = w / (a00 * c00 + a01 * c01 + a02 * c02)
+        det = a00 * c00 + a01 * c01 + a02 * c02  # ≥ 1 in exact arithmetic (I + PSD)
+        if not det > 0.5:
+            continue  # not finite, or still lost: the particle waits for the next iteration
+        f = w / det
         out[p, 0, 0] = c00 * f
         out[p, 0, 1] = out[p, 1, 0] = c01 * f
         out[p, 0, 2] = out[p, 2, 0] = c02 * f
