@@ -743,21 +743,8 @@ class World:
         alone, as in a world without particles. Sleeping bodies are skipped throughout
         (``rigid/sleep.py``)."""
         b = self.bodies
-        kept = None
-        if self.body_forces:  # generators add to the user's forces for this substep only
-            kept = b.force.copy(), b.torque.copy()
-            try:
-                for generator in self.body_forces:
-                    generator.apply(b, dt)
-            except BaseException:
-                b.force[:], b.torque[:] = kept
-                raise
-        if self._sleep:
-            sleeping.wake_pushed(b)
+        kept, acc = self._apply_body_forces(dt)
         p = self.particles
-        w = b.inv_mass[:, None]
-        # what this substep's forces alone give each body, for the resting-contact trick
-        acc = np.where(w > 0.0, self._gravity + b.force * w, 0.0)
         self._force_dt = dt
         try:  # the kick, and that of bodies woken while finding contacts, read the forces
             self._kick(dt, b.awake)
@@ -804,21 +791,8 @@ class World:
         (``rigid/sleep.py``)."""
         b = self.bodies
         h = dt / body_soft.SUBSTEPS
-        kept = None
-        if self.body_forces:  # generators add to the user's forces for this substep only
-            kept = b.force.copy(), b.torque.copy()
-            try:
-                for generator in self.body_forces:
-                    generator.apply(b, dt)
-            except BaseException:
-                b.force[:], b.torque[:] = kept
-                raise
-        if self._sleep:
-            sleeping.wake_pushed(b)
+        kept, acc = self._apply_body_forces(dt)
         p = self.particles
-        w = b.inv_mass[:, None]
-        # what this substep's forces alone give each body, for the resting-contact trick
-        acc = np.where(w > 0.0, self._gravity + b.force * w, 0.0)
         self._force_dt = dt
         try:  # the first kicks (here, and of woken bodies) give the forces of the whole dt
             self._kick(h, b.awake)
@@ -842,6 +816,26 @@ class World:
             p.velocity[packed.selected] = packed.velocity[b.count:]
         self._body_rows = rows
         return rows
+
+    def _apply_body_forces(self, dt: float):
+        """Let the body force generators add to the user's forces for this substep, wake the
+        bodies they push, and return (the user's own forces and torques to put back after the
+        substep, or None; what the forces alone give each body [m/s²], for the resting-contact
+        trick)."""
+        b = self.bodies
+        kept = None
+        if self.body_forces:
+            kept = b.force.copy(), b.torque.copy()
+            try:
+                for generator in self.body_forces:
+                    generator.apply(b, dt)
+            except BaseException:
+                b.force[:], b.torque[:] = kept
+                raise
+        if self._sleep:
+            sleeping.wake_pushed(b)
+        w = b.inv_mass[:, None]
+        return kept, np.where(w > 0.0, self._gravity + b.force * w, 0.0)
 
     def _kick(self, dt: float, which: np.ndarray) -> None:
         """The velocity half of the bodies' integration, for the bodies of mask ``which``:

@@ -21,6 +21,8 @@ target the soft step misses is a ratchet at its measured value with the issue's 
 from __future__ import annotations
 
 import math
+import sys
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -29,6 +31,9 @@ import pointmass as pm
 from pointmass.rigid.box_box import box_box
 from pointmass.rigid.manifold import empty_outputs
 from pointmass.rigid.shapes import Box, Sphere
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[3] / "benchmarks"))
+import bench_rigid  # the benchmark's scenes, built the same way
 
 G = 9.81
 DT = 1.0 / 60.0
@@ -74,15 +79,13 @@ def test_soft_step_tower_stands_60_s_with_sleep_off(n):
 
 # --- point 2: pyramid and pit ------------------------------------------------------------------
 
-def _pyramid_world(base: int = 20, gap: float = 0.02, **world_args):
+def _pyramid_world(**world_args):
+    """The benchmark's 210-box pyramid (bench_rigid.pyramid), apex last."""
+    scene = bench_rigid.pyramid()
     world = pm.World(gravity=(0.0, -G, 0.0), sleep=False, **world_args)
     world.add(pm.Ground(restitution=0.0, friction=MU))
-    bodies = []
-    for row in range(base):
-        for k in range(base - row):
-            x = (k - (base - row - 1) / 2) * (1.0 + gap)
-            bodies.append(world.add_body(Box((0.5, 0.5, 0.5)), (x, 0.5 + row, 0.0), mass=1.0,
-                                         friction=MU, restitution=0.0))
+    bodies = [world.add_body(Box((scene.half,) * 3), x, mass=1.0, friction=MU, restitution=0.0)
+              for x in scene.position]
     return world, bodies
 
 
@@ -115,16 +118,8 @@ def _overlap(pos, quat, half):
 def pit(n: int = 1000, seconds: float = 10.0, seed: int = 0,
         **world_args) -> tuple[float, float]:
     """(max speed [m/s], deepest box overlap [m]) of the benchmark's box pit after ``seconds``."""
-    rng = np.random.default_rng(seed)
-    per = math.ceil(math.sqrt(n / 4))
-    side = 0.9 * per + 0.2
-    grid = np.stack(np.meshgrid(np.arange(per), np.arange(4), np.arange(per), indexing="ij"),
-                    axis=-1).reshape(-1, 3)[:n]
-    pos = np.column_stack([-side / 2 + 0.55 + 0.9 * grid[:, 0], 0.5 + 0.9 * grid[:, 1],
-                           -side / 2 + 0.55 + 0.9 * grid[:, 2]])
-    pos += rng.uniform(-0.05, 0.05, pos.shape)
-    q = rng.normal(size=(n, 4))
-    q /= np.linalg.norm(q, axis=1, keepdims=True)
+    scene = bench_rigid.pit(n, seed)  # the benchmark's layout
+    pos, q, side = scene.position, scene.orientation, 2 * scene.pit
     world = pm.World(gravity=(0.0, -G, 0.0), sleep=False, **world_args)
     world.add(pm.Ground(restitution=0.0, friction=MU))
     for normal in ((1, 0, 0), (-1, 0, 0), (0, 0, 1), (0, 0, -1)):
