@@ -4,200 +4,31 @@ from __future__ import annotations
 
 import itertools
 import math
-from dataclasses import dataclass
 from functools import partial
 from typing import Any
 
 import numpy as np
-from numba import njit, prange
 
 from . import _validate as check
-from . import particle_sleep as psleep
+from . import wake_loop as wake
 from .collide import Plane
 from .contacts import ContactBuffer, ContactGenerator, friction_value, restitution_value
-from .forces import ForceGenerator, drag_force, fold
-from .particles import CHUNK, PARALLEL_MIN_PARTICLES, Particles
+from .forces import ForceGenerator, fold
+from .particle_integration import integrate_particles
+from .particle_sleep import active as moving_particles
+from .particles import Particles
 from .rigid import sleep as sleeping
 from .rigid.bodies import Bodies, Body
-from .rigid.collide import generate as generate_body_contacts
 from .rigid.contacts import BodyContacts
 from .rigid.forces import BodyForceGenerator
 from .rigid.joint_set import Joints
 from .rigid.joints import Joint
-from .rigid.particle_body import add_particle_contacts
 from .rigid.shapes import Box, Sphere
 from .rigid.step import integrate_positions, integrate_velocities, spin_error
 from .solver import ImpulseHistory, Solver, SolveStats, body_soft
 from .solver.body_late import project_late
 from .stability import SpringCheck, jump_check, needs_jump_check
-
-
-@dataclass(frozen=True)
-class StepStats:
-    """What one ``World.step`` did.
-
-    Attributes:
-        contacts: Contacts generated in the last substep, including speculative ones (a gap
-            within the collision margin, negative penetration).
-        iterations: Single-contact resolutions the solver performed (all substeps).
-        max_penetration: Largest overlap left after resolving [m] (0 when none).
-        kinetic_energy: Total kinetic energy after the step [J], summed when first read (a
-            property: a step whose energy nobody reads makes no pass over the velocities for
-            it). Read it before the world steps again; reading it later raises, as the state
-            it described is gone (``World.kinetic_energy()`` gives the current one).
-        mode: The solver mode ("sequential" or "worst-first").
-        velocity_passes: Velocity passes of the solver (all substeps; see ``pointmass.solver``).
-        position_passes: Projection passes (all substeps).
-        body_contacts: Rigid-body contact points in the last substep (speculative included),
-            particle–body points among them.
-        awake_bodies: Movable rigid bodies awake after the step (the rest sleep).
-    """
-
-    contacts: int
-    iterations: int
-    max_penetration: float
-    mode: str
-    velocity_passes: int = 0
-    position_passes: int = 0
-    body_contacts: int = 0
-    awake_bodies: int = 0
-
-    # The energy is not a field: ``_energy`` holds it once read, or what computes it
-    # (``World._energy_after``, set by the step), so ``asdict``, ``==`` and ``repr`` never
-    # reach the world behind it.
-
-    @property
-    def kinetic_energy(self) -> float:
-        energy = self.__dict__.get("_energy")
-        if energy is None:
-            raise RuntimeError("this StepStats was pickled or deep-copied before its kinetic "
-                               "energy was read (it is summed when first read, from the world "
-                               "that stepped; a copy does not carry the world along)")
-        if callable(energy):
-            energy = energy()
-            object.__setattr__(self, "_energy", energy)  # frozen: cache it once
-        return energy
-
-    def __getstate__(self) -> dict:
-        state = dict(self.__dict__)
-        if callable(state.get("_energy")):
-            del state["_energy"]  # a pickle or deep copy does not carry the world along
-        return state
-
-    def __setstate__(self, state: dict) -> None:
-        for name, value in state.items():
-            object.__setattr__(self, name, value)
-
-
-@njit(cache=True, inline="always")
-def _integrate_particle(px, py, pz, vx, vy, vz, fx, fy, fz, w, d, gx, gy, gz, k1, k2, dt):
-    """Semi-implicit Euler for one particle, in the cookbook's order: v += a·dt, v *= d^dt,
-    p += v·dt, from its position, velocity and accumulated force, inverse mass w and damping d.
-    The folded generators (``forces.fold``) act here: the uniform acceleration g and the
-    drag of coefficients k1, k2 on the velocity before the step, as if added to the force.
-    Immovable particles (w = 0) get no acceleration but keep moving with whatever velocity they
-    were given (kinematic). Returns the new position, velocity and acceleration (9 numbers).
-
-    A pure function of scalars: the driver loads and stores. (As a helper that stored into the
-    arrays itself, numba compiled the serial loop at 71 ns a particle, against 4.5 ns for the
-    same helper in the parallel loop on one thread; given g as an array, whose loads the
-    stores may alias, 39 ns against 18.)
-    """
-    ax = 0.0
-    ay = 0.0
-    az = 0.0
-    if w > 0.0:
-        if k1 != 0.0 or k2 != 0.0:  # the same for every particle: a branch never mispredicted
-            dx, dy, dz = drag_force(vx, vy, vz, k1, k2)
-            fx += dx
-            fy += dy
-            fz += dz
-        ax = gx + fx * w
-        ay = gy + fy * w
-        az = gz + fz * w
-        vx += ax * dt
-        vy += ay * dt
-        vz += az * dt
-        if d < 1.0:  # no multiply by 1 for the undamped (1 ns of 11 a particle, measured)
-            keep = d**dt
-            vx *= keep
-            vy *= keep
-            vz *= keep
-    return px + vx * dt, py + vy * dt, pz + vz * dt, vx, vy, vz, ax, ay, az
-
-
-@njit(cache=True, nogil=True)
-def _first_not_finite(pos, vel, start, stop):
-    """The first particle in [start, stop) with a non-finite position or velocity, or -1."""
-    for i in range(start, stop):
-        if not math.isfinite(pos[i, 0] + pos[i, 1] + pos[i, 2]
-                             + vel[i, 0] + vel[i, 1] + vel[i, 2]):
-            return i
-    return -1
-
-
-@njit(cache=True, nogil=True)
-def _integrate(pos, vel, force, acc, inv_mass, damping, awake, g, k1, k2, dt, store_acc, start,
-               stop):
-    """Integrate particles ``start`` to ``stop`` (a chunk); returns the first that is not
-    finite afterwards, or -1. The acceleration is stored only with ``store_acc`` (when
-    something reads it: the solver's resting-contact test). Sleeping particles (``awake``
-    False) are skipped, their accumulated force left for the wake test
-    (``particle_sleep.py``); with every particle awake the arithmetic is the same.
-
-    Each particle's force accumulator is cleared as it is read, as Cyclone's integrate ends with
-    clearAccumulator: no separate pass clears it, and a force added to ``particles.force``
-    before a step acts in it (as ``addForce`` does in the book). The stores are written out
-    here: an inlined helper that stores into the arrays made numba's serial loop 3× slower
-    (measured 49 against 16 ns a particle). Non-finite values are caught by one sum of the
-    new positions, tested once (a non-finite velocity makes its position non-finite: dt > 0):
-    a per-particle test cost 1–2 ns of 11; an overflow of the sum alone only costs a rescan
-    that finds nothing. The kinetic energy is not summed here (in this loop it cost 2.3 ns a
-    particle of 11.7, 8192 particles on one thread): ``StepStats`` sums it only when read."""
-    gx, gy, gz = g[0], g[1], g[2]
-    probe = 0.0
-    for i in range(start, stop):
-        if not awake[i]:
-            continue
-        px, py, pz, vx, vy, vz, ax, ay, az = _integrate_particle(
-            pos[i, 0], pos[i, 1], pos[i, 2], vel[i, 0], vel[i, 1], vel[i, 2],
-            force[i, 0], force[i, 1], force[i, 2], inv_mass[i], damping[i], gx, gy, gz,
-            k1, k2, dt)
-        pos[i, 0] = px
-        pos[i, 1] = py
-        pos[i, 2] = pz
-        vel[i, 0] = vx
-        vel[i, 1] = vy
-        vel[i, 2] = vz
-        if store_acc:
-            acc[i, 0] = ax
-            acc[i, 1] = ay
-            acc[i, 2] = az
-        force[i, 0] = 0.0  # the accumulator is consumed (Cyclone's clearAccumulator)
-        force[i, 1] = 0.0
-        force[i, 2] = 0.0
-        probe += px + py + pz
-    return -1 if math.isfinite(probe) else _first_not_finite(pos, vel, start, stop)
-
-
-@njit(cache=True, nogil=True, parallel=True)
-def _integrate_parallel(pos, vel, force, acc, inv_mass, damping, awake, g, k1, k2, dt,
-                        store_acc):
-    """``_integrate`` on all cores, one chunk of ``CHUNK`` particles per task; returns the
-    first non-finite particle in chunk order (the same for any thread count), or -1."""
-    n = pos.shape[0]
-    chunks = (n + CHUNK - 1) // CHUNK
-    bad = np.empty(chunks, np.int64)
-    for c in prange(chunks):
-        start, stop = c * CHUNK, min(n, (c + 1) * CHUNK)
-        bad[c] = _integrate(pos, vel, force, acc, inv_mass, damping, awake, g, k1, k2, dt,
-                            store_acc, start, stop)
-    first = -1
-    for c in range(chunks):
-        if bad[c] >= 0:
-            first = bad[c]
-            break
-    return first
+from .step_stats import StepStats
 
 
 class World:
@@ -564,7 +395,7 @@ class World:
         if self.bodies.count:
             self.bodies.clear_accumulators()  # user forces and torques last one step
         if self._sleep and (self.bodies.count or self.particles.count):
-            self._fall_asleep(float(dt))
+            wake.fall_asleep(self, float(dt))
         self._steps += 1
         pen = self.contacts.penetration
         b = self.bodies
@@ -624,30 +455,20 @@ class World:
         # The acceleration is stored only where it is read: the resting-contact test of the
         # particle solver and of the body stage.
         after = bool(self.contact_generators) or self.bodies.count > 0
-        sleepers = self._sleep and p.count > 0 and self._wake_disturbed(dt)
-        args = (p.position, p.velocity, p.force, p.acceleration, p.inv_mass, p.damping, p.awake,
-                g, k1, k2, dt, after)
-        if p.count >= PARALLEL_MIN_PARTICLES:
-            bad = _integrate_parallel(*args)
-        else:
-            bad = _integrate(*args, 0, p.count)
-        if bad >= 0:
-            raise FloatingPointError(
-                f"particle {bad} became non-finite at t = {self.time:.6g} s "
-                f"(position {p.position[bad].tolist()}, velocity {p.velocity[bad].tolist()}); "
-                "a force is too strong for this dt, or a generator produced NaN")
+        sleepers = self._sleep and p.count > 0 and wake.wake_disturbed(self, dt)
+        integrate_particles(p, g, k1, k2, dt, after, self.time)
 
         # Find contacts: every contact generator appends to the buffer. With particles
         # asleep: none when nothing can disturb them, else the rows wake what they touch and
         # those left reaching a sleeper are left out (``particle_sleep.py``).
         self.contacts.clear()
         self.contacts.dt = dt
-        live = psleep.active(p) if sleepers else None
+        live = moving_particles(p) if sleepers else None
         if live is None or live.any():
             for generator in self.contact_generators:
                 generator.generate(p, self.contacts)
         if live is not None:  # particles asleep (``sleepers``)
-            self._wake_touched(live, g, dt)
+            wake.wake_touched(self, live, g, dt)
 
         # Resolve them: impacts, resting contacts and links, then interpenetration.
         solved = self.solver.solve(p, self.contacts, self.impulses, dt)
@@ -659,75 +480,6 @@ class World:
                 position_passes=solved.position_passes + rows.position_passes,
                 resolutions=solved.resolutions, cold_restart=solved.cold_restart)
         return solved
-
-    def _wake_disturbed(self, dt: float) -> bool:
-        """Before the integration of a substep of ``dt``: wake the islands of sleeping
-        particles that a force or the user disturbed (``particle_sleep.py``) and keep the
-        force of those that may fall asleep after this step; returns whether any still sleep.
-        """
-        p = self.particles
-        # Still for this long, a particle may fall asleep at the end of this step (a margin of
-        # a step for the sums of the still-time's floats).
-        candidate = psleep.TIME_TO_SLEEP - 2.0 * dt * self._substeps
-        if p.awake.all():
-            if self._longest_still < candidate:
-                return False  # none can fall asleep after this step: no rest force to keep
-            psleep.disturbed(p.force, p.rest_force, p.velocity, p.position, p.still_position,
-                             p.inv_mass, p.rest_inv_mass, p.awake, p.sleep_time, candidate,
-                             psleep.NUDGE,
-                             np.zeros(0, np.bool_))
-            return False
-        out = np.zeros(p.count, np.bool_)
-        if psleep.disturbed(p.force, p.rest_force, p.velocity, p.position, p.still_position,
-                            p.inv_mass, p.rest_inv_mass, p.awake, p.sleep_time, candidate,
-                             psleep.NUDGE, out):
-            self._wake_particles(out)
-        return not p.awake.all()
-
-    def _wake_touched(self, live: np.ndarray, g: np.ndarray, dt: float) -> None:
-        """After finding contacts with particles asleep: wake the islands that a row or a link
-        joins to an active particle (those woken get this substep's kick: their rows are
-        solved), until none; then leave out the rows that still reach a sleeper."""
-        p = self.particles
-        c = self.contacts
-        if not live.any():  # nothing moves: no rows were found, no link can wake
-            p.force[~p.awake] = 0.0
-            return
-        links = self._particle_links()
-        while True:
-            out = np.zeros(p.count, np.bool_)
-            psleep.touched(c.a, c.b, c.normal, c.penetration, p.velocity, p.awake, live,
-                           float(dt), out)
-            if links.shape[0]:
-                psleep.wake_linked(p, links, live, out)
-            if not out.any():
-                break
-            woken = self._wake_particles(out)
-            psleep.kick(p.velocity, p.acceleration, p.force, p.inv_mass, p.damping, woken, g,
-                        float(dt))
-            live = psleep.active(p)
-        asleep = ~p.awake
-        p.force[asleep] = 0.0  # the accumulator is consumed, as by the integration
-        if c.count:
-            psleep.leave_out_sleepers(c, p.awake)
-
-    def _particle_links(self) -> np.ndarray:
-        """This step's particle pairs that share an island (``psleep.link_pairs``), made once
-        a step when first asked for."""
-        if self._plinks is None:
-            self._plinks = psleep.link_pairs(self.forces, self.contact_generators)
-        return self._plinks
-
-    def _wake_particles(self, marked: np.ndarray) -> np.ndarray:
-        """Wake the islands of the sleeping particles of mask ``marked`` (and the bodies of
-        those islands); returns the mask of the particles woken."""
-        p = self.particles
-        labels = np.unique(p.island[marked & ~p.awake])
-        woken = p.wake_islands(labels)
-        b = self.bodies
-        if b.count and (labels < b.count).any() and not b.awake.all():
-            b.wake_islands(labels)  # an island of both: its bodies get the body stage's kick
-        return woken
 
     def _substep_bodies(self, dt: float):
         """The body stage of one substep: ``body_step`` picks the method."""
@@ -748,7 +500,7 @@ class World:
         self._force_dt = dt
         try:  # the kick, and that of bodies woken while finding contacts, read the forces
             self._kick(dt, b.awake)
-            packed, acc = self._body_contacts(dt, dt, acc)
+            packed, acc = wake.find_body_rows(self, dt, dt, acc)
             self._packed = packed  # the islands read its particles (``_fall_asleep``)
         finally:
             if kept is not None:
@@ -796,7 +548,7 @@ class World:
         self._force_dt = dt
         try:  # the first kicks (here, and of woken bodies) give the forces of the whole dt
             self._kick(h, b.awake)
-            packed, acc = self._body_contacts(h, dt, acc)
+            packed, acc = wake.find_body_rows(self, h, dt, acc)
             self._packed = packed  # the islands read its particles (``_fall_asleep``)
             view = b
             if packed is not None:
@@ -852,78 +604,6 @@ class World:
                                     b.linear_damping, b.angular_damping, self._gravity, dt, which)
         if spun >= 0:
             raise spin_error(b, spun, dt, self.time)
-
-    def _body_contacts(self, h: float, dt: float, acc: np.ndarray):
-        """This substep's body rows, then the particle–body rows; returns the packed view (or
-        None) and ``acc`` extended to it. A sleeping island that a row wakes gets its first
-        kick (of h) and the rows are made again, until no row touches a sleeping body that
-        should wake."""
-        b = self.bodies
-        p = self.particles
-        planes = [g for g in self.contact_generators if isinstance(g, Plane)]
-        links = self._links() if self._sleep else None
-        exclude = self.joints.pair_keys(b.count) if self.joints else None
-        while True:
-            if b.wakes != self._wakes_seen:  # islands woke (here, or by hand since)
-                self._wakes_seen = b.wakes
-                self.sleeping_impulses.give_back(self.body_impulses, b.awake)
-            live = sleeping.active(b) if self._sleep and not b.awake.all() else None
-            if live is not None and not live.any():  # all asleep or still: nothing to find
-                self.body_contacts.resize(0)
-            else:
-                generate_body_contacts(b, planes, dt, self.body_contacts, active=live,
-                                       exclude=exclude)
-            packed = add_particle_contacts(b, p, dt, self.body_contacts, self._particle_friction,
-                                           self._particle_restitution)
-            full = acc if packed is None else np.concatenate(
-                [acc, p.acceleration[packed.selected]])
-            if packed is not None and self._sleep and not p.awake.all():
-                # a moving body wakes the sleeping particles it touches; the rows that still
-                # reach a sleeping particle are left out (``particle_sleep.py``)
-                c = self.body_contacts
-                out = np.zeros(p.count, np.bool_)
-                movers = sleeping.active(b) if live is None else live
-                if psleep.touched_by_bodies(b.count, c.a, c.b, c.normal, c.depth,
-                                            packed.selected, p.velocity, b.velocity,
-                                            b.angular_velocity, c.r_b, p.awake, movers,
-                                            float(dt), out):
-                    was = b.awake.copy()
-                    self._wake_particles(out)
-                    if (b.awake & ~was).any():
-                        self._kick(dt, b.awake & ~was)
-                    continue  # again, with the woken
-                slot = c.a >= b.count
-                reach = np.zeros(c.a.shape[0], np.bool_)
-                reach[slot] = ~p.awake[packed.selected[c.a[slot] - b.count]]
-                if reach.any():
-                    c.keep(~reach)
-            if live is None:
-                return packed, full
-            assert links is not None  # ``live`` is only set with sleeping on, as ``links``
-            woken = sleeping.touched(b, self.body_contacts, packed, full, dt, links, live)
-            if not woken.any():
-                sleeping.leave_sleepers_out(b, self.body_contacts, packed)
-                return packed, full
-            self._kick(h, b.wake_islands(np.unique(b.island[woken])))
-
-    def _links(self) -> np.ndarray:
-        """The body pairs (K, 2) that share an island: ``island_links`` and every joint's."""
-        links = sleeping.check_links(self.island_links, self.bodies.count)
-        if not self.joints:
-            return links
-        return np.concatenate([links, self.joints.body_pairs()])
-
-    def _fall_asleep(self, dt: float) -> None:
-        """End of a step: islands of bodies and particles still for long enough fall asleep
-        (``rigid/sleep.py``, ``particle_sleep.py``)."""
-        b = self.bodies
-        packed = self._packed if b.count else None
-        slept, self._longest_still = psleep.fall_asleep(
-            b, self.body_contacts, None if packed is None else packed.selected,
-            self._links if b.count else partial(np.zeros, (0, 2), np.int64), self.particles,
-            self.contacts, self._particle_links, dt)
-        if slept is not None:
-            self.sleeping_impulses.put_away(self.body_impulses, slept)
 
     # -- measurements ---------------------------------------------------------------------------
     def kinetic_energy(self) -> float:

@@ -69,7 +69,7 @@ def test_parallel_integration_is_bit_identical_for_any_thread_count():
     bits on one thread or two."""
     import numba
 
-    from pointmass.world import PARALLEL_MIN_PARTICLES
+    from pointmass.particles import PARALLEL_MIN_PARTICLES
 
     n = PARALLEL_MIN_PARTICLES + 12_345
     rng = np.random.default_rng(3)
@@ -96,7 +96,7 @@ def test_the_step_energy_is_summed_when_read_and_only_while_its_state_lasts():
     from the state the step left: on a parallel-sized world it is ``Particles.kinetic_energy``
     to the bit and ½·Σ m·|v|² to rounding; read after the next step it raises, naming the
     way to the current energy, instead of describing a later state."""
-    from pointmass.world import PARALLEL_MIN_PARTICLES
+    from pointmass.particles import PARALLEL_MIN_PARTICLES
 
     n = PARALLEL_MIN_PARTICLES + 777
     rng = np.random.default_rng(8)
