@@ -35,7 +35,7 @@ class ContactBuffer:
             and its depth may be negative (too short) as well as positive, shape (M,), bool.
         key: Identity of the contact across steps, shape (M,), int64; -1 for none. The solver
             warm-starts a contact with the impulse that the contact with the same key needed in
-            the previous step (``pointmass.keys`` builds them, ``solver/history.py`` keeps them).
+            the previous step (``pointmass.keys`` builds them, ``impulse_history.py`` keeps them).
         anchors: For contacts against scenery that is a point (an anchored cable or rod), that
             point, shape (M, 3), NaN for the other rows; None when no row has one. The solver
             measures such a contact again from the point where its particle has moved

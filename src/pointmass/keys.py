@@ -1,7 +1,7 @@
 """Contact keys: the identity of a contact across steps, built in one place.
 
 The solver warm-starts a contact with the impulse the contact with the same key needed in the
-previous step (``solver/history.py``), so a key must name the same physical contact every step:
+previous step (``impulse_history.py``), so a key must name the same physical contact every step:
 
 - a sphere pair i < j:             i·2³¹ + j                      (bits 61 and 62 clear)
 - a particle on a plane or wall:   bit 62 | plane serial·2³¹ | i

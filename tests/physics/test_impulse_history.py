@@ -1,4 +1,4 @@
-"""The impulse history (``solver/history.py``): what ``keep`` stores is sorted by key however
+"""The impulse history (``impulse_history.py``): what ``keep`` stores is sorted by key however
 it sorts (from the rows ``recall`` found, or afresh), and ``recall`` finds every kept key."""
 
 from __future__ import annotations
@@ -7,7 +7,7 @@ import numpy as np
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from pointmass.solver.history import ImpulseHistory, _sort_runs
+from pointmass.impulse_history import ImpulseHistory, _sort_runs
 
 
 def _kept(history):

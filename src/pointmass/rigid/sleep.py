@@ -20,8 +20,8 @@ from __future__ import annotations
 
 import numpy as np
 
+from ..impulse_history import ImpulseHistory
 from ..keys import bodies_of_keys
-from ..solver.history import ImpulseHistory
 from . import islands as isl
 
 

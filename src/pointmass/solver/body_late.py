@@ -26,13 +26,13 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
+from ..impulse_history import ImpulseHistory
 from ..rigid import collide
 from ..rigid.contacts import BodyContacts
 from ..rigid.scalar import qrot_inv
 from . import body_energy, body_solver
 from . import body_stages as st
 from .body_solver import MAX_POSITION_PASSES
-from .history import ImpulseHistory
 
 #: An overlap deeper than this [m] that no row foresaw is stopped and projected at once (the
 #: next substep's rows take shallower ones). Measured on the 250-box pit's drop (120 steps):

@@ -63,6 +63,7 @@ from dataclasses import dataclass
 import numpy as np
 from numba import njit
 
+from ..impulse_history import ImpulseHistory
 from ..rigid.contacts import BodyContacts
 from ..rigid.scalar import qrot, qrot_inv
 from ..rigid.step import integrate_positions, integrate_velocities
@@ -70,7 +71,6 @@ from . import body_manifolds as bm
 from . import body_passes as bp
 from . import joint_solver
 from .body_stages import _arm_mass, world_inertia
-from .history import ImpulseHistory
 from .kernels import bounce_target
 
 # Box2D v3's defaults (``src/types.c``, ``src/solver.c``); the lead moves them to SolverSettings.

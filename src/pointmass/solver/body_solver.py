@@ -18,12 +18,12 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ..impulse_history import ImpulseHistory
 from ..rigid.contacts import BodyContacts
 from . import body_direct, body_energy, joint_solver
 from . import body_manifolds as bm
 from . import body_passes as bp
 from . import body_stages as st
-from .history import ImpulseHistory
 
 #: Velocity passes stop once no point's velocity changes by more than this [m/s] in a pass.
 VELOCITY_TOLERANCE = 1e-5

@@ -42,9 +42,9 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..contacts import ContactBuffer
+from ..impulse_history import ImpulseHistory
 from ..particles import Particles
 from . import body_solver, direct, parallel, remeasure, stages
-from .history import ImpulseHistory
 from .kernels import Bodies, ContactSet
 from .partition import block_rows
 
