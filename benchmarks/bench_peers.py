@@ -68,8 +68,10 @@ def pointmass_pit(pos: np.ndarray, side: float) -> pm.World:
     return world
 
 
-def run_pointmass(n: int):
+def run_pointmass(n: int, settings=None):
     world = pointmass_pit(*layout(n))
+    if settings is not None:
+        world.settings = settings
     start = time.perf_counter()
     for _ in range(STEPS):
         world.step(DT)

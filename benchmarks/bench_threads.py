@@ -4,11 +4,12 @@
 
 For each thread count (``numba.set_num_threads``): 100 000 free particles under gravity and
 drag (pointmass's World against bench_limits' fused loop, both on the same threads), and the
-ball pit of bench_peers.py on the solver's block-parallel path (``solver.PARALLEL_MIN_CONTACTS``
-forced to 0) against its default serial path in the same run. The pit's final positions are
-hashed: the parallel path must give the same bits for every thread count (it orders rows by
-the contacts alone). Written to decide where the parallel solver pays; on the 2-core
-development machine it never did (see RESULTS.md), so run this where there are more cores.
+ball pit of bench_peers.py on the solver's block-parallel path
+(``SolverSettings.parallel_min_contacts`` = 0) against its default serial path in the same
+run. The pit's final positions are hashed: the parallel path must give the same bits for
+every thread count (it orders rows by the contacts alone). Written to decide where the
+parallel solver pays; on the 2-core development machine it never did (see RESULTS.md), so run
+this where there are more cores.
 """
 
 from __future__ import annotations
@@ -25,17 +26,13 @@ sys.path.insert(0, str(Path(__file__).parent))
 import bench_limits
 import bench_peers
 
-from pointmass.solver import solver as solver_module
+import pointmass as pm
 
 
 def pit(n: int, parallel: bool) -> tuple[float, dict, str]:
     """(body-steps/s, the pile after 600 steps, a hash of its final positions)."""
-    saved = solver_module.PARALLEL_MIN_CONTACTS
-    solver_module.PARALLEL_MIN_CONTACTS = 0 if parallel else saved
-    try:
-        seconds, pos, vel = bench_peers.run_pointmass(n)
-    finally:
-        solver_module.PARALLEL_MIN_CONTACTS = saved
+    settings = pm.SolverSettings(parallel_min_contacts=0) if parallel else None
+    seconds, pos, vel = bench_peers.run_pointmass(n, settings)
     _, side = bench_peers.layout(n)
     digest = hashlib.sha256(pos.tobytes() + vel.tobytes()).hexdigest()[:12]
     return n * bench_peers.STEPS / seconds, bench_peers.measure(pos, vel, side), digest

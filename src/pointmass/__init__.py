@@ -50,6 +50,7 @@ from .rigid.joints import BallJoint, HingeJoint, Joint
 from .rigid.shapes import Box, Sphere
 from .scene import BoxVisual, CameraHint, PlaneVisual, Scene
 from .simulation import Simulation
+from .solver.settings import SolverSettings
 from .springs import AnchoredBungee, AnchoredSpring, Bungee, FakeSpring, Spring
 from .stability import UnstableStepError
 from .world import StepStats, World
@@ -105,6 +106,6 @@ __all__ = [
     "Cable", "CameraHint", "ContactBuffer", "ContactGenerator", "CustomForce", "Drag",
     "Explosion", "FakeSpring", "ForceGenerator", "Gravity", "Ground", "HingeJoint", "Joint",
     "Particle", "Particles", "Plane", "PlaneVisual", "Probe", "Rod", "Scene", "Simulation",
-    "Sphere", "SphereCollisions", "Spring", "StepStats", "UnstableStepError", "World", "choice",
-    "probes", "render", "show", "stability", "tweak",
+    "SolverSettings", "Sphere", "SphereCollisions", "Spring", "StepStats", "UnstableStepError",
+    "World", "choice", "probes", "render", "show", "stability", "tweak",
 ]

@@ -25,7 +25,7 @@ from .rigid.joint_set import Joints
 from .rigid.joints import Joint
 from .rigid.shapes import Box, Sphere
 from .rigid.step import integrate_positions, integrate_velocities, spin_error
-from .solver import ImpulseHistory, Solver, SolveStats, body_soft
+from .solver import ImpulseHistory, Solver, SolverSettings, SolveStats, body_soft
 from .solver.body_late import project_late
 from .stability import SpringCheck, jump_check, needs_jump_check
 from .step_stats import StepStats
@@ -60,6 +60,8 @@ class World:
             random scenes can gain energy with it, and it refuses joints (jointed random
             scenes explode with it); see that module).
 
+        settings: The solver's tuning numbers (``pm.SolverSettings``; its defaults when None):
+            tolerances, caps on passes, when the exact solve and the threads are used.
     Example:
         >>> import pointmass as pm
         >>> world = pm.World(gravity=(0, -9.81, 0))
@@ -71,7 +73,8 @@ class World:
 
     def __init__(self, gravity=(0.0, -9.81, 0.0), *, iterations: int | None = None,
                  resolver: str = "sequential", restitution_threshold: float = 0.0,
-                 substeps: int = 1, sleep: bool = True, body_step: str = "impulses") -> None:
+                 substeps: int = 1, sleep: bool = True, body_step: str = "impulses",
+                 settings: SolverSettings | None = None) -> None:
         self.particles = Particles()
         #: Rigid bodies (``add_body``); they meet each other, every ``Plane``/``Ground`` and every
         #: particle with radius > 0 (``rigid/particle_body.py``).
@@ -107,7 +110,7 @@ class World:
         #: This world's numbering of planes and link sets in contact keys (``keys.py``).
         self._key_serials = itertools.count()
         self.contacts = ContactBuffer()
-        self.solver = Solver()
+        self.solver = Solver(settings=settings)
         #: What each keyed contact needed last step (the solver's warm start); clear it after
         #: restoring a snapshot so a replay is bit-identical.
         self.impulses = ImpulseHistory()
@@ -135,6 +138,18 @@ class World:
         self._folded: tuple[list, Any, float, float] = ([], self._gravity, 0.0, 0.0)
 
     # -- settings, checked on assignment --------------------------------------------------------
+    @property
+    def settings(self) -> SolverSettings:
+        """The solver's tuning numbers (``SolverSettings``, frozen: assign a new one, e.g.
+        ``dataclasses.replace(world.settings, max_velocity_passes=30)``)."""
+        return self.solver.settings
+
+    @settings.setter
+    def settings(self, value: SolverSettings) -> None:
+        if not isinstance(value, SolverSettings):
+            raise TypeError(f"settings must be a pm.SolverSettings, got {type(value).__name__}")
+        self.solver.settings = value
+
     @property
     def gravity(self) -> np.ndarray:
         """World gravity [m/s²], shape (3,)."""

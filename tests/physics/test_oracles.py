@@ -202,12 +202,11 @@ def test_a_long_chain_released_level_keeps_its_lengths_and_adds_no_energy(links,
 def test_a_violation_no_projection_can_remove_is_not_re_measured_for_ever():
     """A rod between two pinned particles at the wrong distance: nothing can move, so the
     re-measured projection stops once no step lowers the violations (its line search,
-    ``LINE_SEARCH_HALVINGS``), not after ``MAX_NEWTON_PROJECTIONS`` exact solves every step
+    ``line_search_halvings``), not after ``max_newton_projections`` exact solves every step
     (measured: at most 13 passes in all, 10 of them the plain projection's); the chain hanging
     beside it still holds."""
-    from pointmass.solver import solver
-
     world = pm.World()
+    settings = world.settings
     a, b = world.add_particle((0.0, 1.0, 0.0)), world.add_particle((2.0, 1.0, 0.0))
     world.particles.pin(a)
     world.particles.pin(b)
@@ -216,8 +215,8 @@ def test_a_violation_no_projection_can_remove_is_not_re_measured_for_ever():
     chain = world.add(pm.Rod(np.r_[a, ids[:-1]], ids, 0.3))
     for _ in range(120):
         stats = world.step(DT)
-        assert stats.position_passes <= solver.MAX_PROJECTION_PASSES + 2
-    assert 2 < solver.MAX_NEWTON_PROJECTIONS
+        assert stats.position_passes <= settings.max_projection_passes + 2
+    assert 2 < settings.max_newton_projections
     assert world.particles.position[[a, b]].tolist() == [[0.0, 1.0, 0.0], [2.0, 1.0, 0.0]]
     assert np.abs(chain.current_lengths(world.particles) / 0.3 - 1.0).max() < 1e-4
 

@@ -5,13 +5,13 @@ number of threads, and a pile as good as the serial sweep's."""
 from __future__ import annotations
 
 from contextlib import contextmanager
+from dataclasses import replace
 
 import numba
 import numpy as np
 import pytest
 from test_solver import DT, ball_pit
 
-from pointmass.solver import solver as solver_module
 from pointmass.solver.partition import block_rows
 
 
@@ -61,19 +61,19 @@ def _numba_threads(threads: int):
         numba.set_num_threads(saved)
 
 
-def _pit_run(monkeypatch, threads: int, steps: int) -> tuple:
-    monkeypatch.setattr(solver_module, "PARALLEL_MIN_CONTACTS", 0)
+def _pit_run(threads: int, steps: int) -> tuple:
     with _numba_threads(threads):
         world = ball_pit(400)
+        world.settings = replace(world.settings, parallel_min_contacts=0)
         for _ in range(steps):
             stats = world.step(DT)
     return world.particles.position.copy(), world.particles.velocity.copy(), stats
 
 
 @pytest.mark.skipif(numba.config.NUMBA_NUM_THREADS < 2, reason="needs 2 numba threads")
-def test_parallel_passes_are_bit_identical_for_one_thread_or_two(monkeypatch):
-    one = _pit_run(monkeypatch, 1, 90)
-    two = _pit_run(monkeypatch, 2, 90)
+def test_parallel_passes_are_bit_identical_for_one_thread_or_two():
+    one = _pit_run(1, 90)
+    two = _pit_run(2, 90)
     assert np.array_equal(one[0], two[0]) and np.array_equal(one[1], two[1])
     assert one[2] == two[2]
 
@@ -91,7 +91,7 @@ def _settling(world, steps: int) -> float:
 
 
 @pytest.mark.slow
-def test_a_pile_solved_in_parallel_settles_like_the_serial_one(monkeypatch):
+def test_a_pile_solved_in_parallel_settles_like_the_serial_one():
     """400 spheres, 5 s: overlap ≤ 1 % of the diameter, no sphere below the floor by more than
     0.1 % of it, and the mean speed (over the last 100 steps, and over three seeds) within
     50 % of the serial sweep's (a different row order converges to the same solution, by
@@ -100,11 +100,11 @@ def test_a_pile_solved_in_parallel_settles_like_the_serial_one(monkeypatch):
     while over seeds 0-2 the two stayed within 15 % of each other."""
     speeds = {}
     for label, least in (("parallel", 0), ("serial", 10**12)):
-        monkeypatch.setattr(solver_module, "PARALLEL_MIN_CONTACTS", least)
         runs = []
         for seed in range(3):
             with _numba_threads(2):
                 world = ball_pit(400, seed)
+                world.settings = replace(world.settings, parallel_min_contacts=least)
                 runs.append(_settling(world, 300))
                 stats = world.step(DT)
             assert stats.max_penetration <= 0.01, (label, seed)

@@ -1,18 +1,21 @@
-"""Over-relaxed velocity passes on large contact sets (``solver.LARGE_SET_RELAXATION``): they
-converge faster than plain Gauss–Seidel on a pile, they never add kinetic energy from a cold
+"""Over-relaxed velocity passes on large contact sets (``SolverSettings.large_set_relaxation``):
+they converge faster than plain Gauss–Seidel on a pile, they never add kinetic energy from a cold
 start (each row's step still lowers the solve's objective), and small sets are not touched."""
 
 from __future__ import annotations
+
+from dataclasses import replace
 
 import numpy as np
 import pytest
 from test_solver import DT, ball_pit
 
 import pointmass as pm
-from pointmass.solver import solver as solver_module
 from pointmass.solver import stages
 from pointmass.solver.kernels import Bodies, ContactSet
 from pointmass.solver.sweeps import has_friction, velocity_rows
+
+SETTINGS = pm.SolverSettings()  # the defaults the engine ships with
 
 
 def _captured_pile(monkeypatch, steps: int = 150):
@@ -57,15 +60,15 @@ def test_ten_over_relaxed_passes_come_closer_to_the_solution_than_fifteen_plain(
     plain 10 / 15 / 30 passes 0.029 / 0.023 / 0.014; over-relaxed (ω = 1.5) 10 passes 0.016,
     30 passes 0.004."""
     state = _captured_pile(monkeypatch)
-    assert state[1].a.shape[0] > solver_module.direct.DIRECT_MAX_CONTACTS
+    assert state[1].a.shape[0] > SETTINGS.direct_max_contacts
     solution = _passes(state, 2000, 1.0)[0].vel
 
     def error(bod):
         return float(np.sqrt(((bod.vel - solution) ** 2).sum(axis=1).mean()))
 
     plain = error(_passes(state, 15, 1.0)[0])
-    relaxed = error(_passes(state, solver_module.MAX_LARGE_VELOCITY_PASSES,
-                            solver_module.LARGE_SET_RELAXATION)[0])
+    relaxed = error(_passes(state, SETTINGS.max_large_velocity_passes,
+                            SETTINGS.large_set_relaxation)[0])
     assert relaxed < 0.85 * plain, (relaxed, plain)
 
 
@@ -77,17 +80,17 @@ def test_over_relaxed_passes_from_a_cold_start_never_add_kinetic_energy(monkeypa
     assert not con.bil.any() and (con.target <= 0.0).all()
     con.impulse[:] = 0.0
     before = 0.5 * float(np.einsum("ij,ij->", bod.vel, bod.vel))
-    _, energies = _passes((bod, con), 10, solver_module.LARGE_SET_RELAXATION)
+    _, energies = _passes((bod, con), 10, SETTINGS.large_set_relaxation)
     assert max(energies) <= before * (1 + 1e-12), (before, energies)
     assert energies[-1] < before
 
 
-def test_a_small_set_is_not_over_relaxed(monkeypatch):
+def test_a_small_set_is_not_over_relaxed():
     """A set small enough for the exact solve keeps plain passes (and so its bits): a
     stack of five spheres gives the same trajectory with the relaxation factor changed."""
 
-    def stack_run():
-        world = pm.World()
+    def stack_run(settings):
+        world = pm.World(settings=settings)
         world.add_particles([(0.0, 0.5 + 1.0 * i, 0.0) for i in range(5)], radii=0.5)
         world.add(pm.Plane((0, 1, 0), 0.0))
         world.add(pm.SphereCollisions())
@@ -95,7 +98,6 @@ def test_a_small_set_is_not_over_relaxed(monkeypatch):
             world.step(DT)
         return world.particles.position.copy(), world.particles.velocity.copy()
 
-    first = stack_run()
-    monkeypatch.setattr(solver_module, "LARGE_SET_RELAXATION", 1.9)
-    second = stack_run()
+    first = stack_run(SETTINGS)
+    second = stack_run(replace(SETTINGS, large_set_relaxation=1.9))
     assert np.array_equal(first[0], second[0]) and np.array_equal(first[1], second[1])

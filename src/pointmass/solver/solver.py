@@ -14,15 +14,15 @@ loaded links at once:
 3. *warm start* — each keyed contact begins from the impulse it needed last step.
 4. *solve velocities* — sequential impulses (Catto 2006, box2d-lite): accumulated impulses
    clamped at ≥ 0, targets 0 for touching contacts and gap/dt for speculative gaps, passes until
-   no velocity changes by more than ``VELOCITY_TOLERANCE``, capped at ``max_passes``.
+   no velocity changes by more than ``velocity_tolerance``, capped at ``max_passes``.
    Energy: from a cold start, projected Gauss–Seidel decreases f(λ) = KE − KE₀ − λ·target
    monotonically from f(0) = 0, so with targets ≤ 0 it never adds kinetic energy; a warm start
    can (a loaded cable whose direction turned: measured +204 % in one step). So the kinetic
    energy is compared before and after, and a stage that gained energy is redone cold.
-   A set too large for the exact solve is over-relaxed (``LARGE_SET_RELAXATION``, ω < 2:
+   A set too large for the exact solve is over-relaxed (``large_set_relaxation``, ω < 2:
    each row's step still lowers f, only further).
 5. *project positions* — mass-weighted projection until no penetration exceeds
-   ``PROJECTION_TOLERANCE × dt``: positions only, no velocity, so no energy either. A small
+   ``projection_tolerance × dt``: positions only, no velocity, so no energy either. A small
    set is then projected again on its contacts measured where the particles now are (Newton's
    method, ``remeasure.py``), so a link that turned within the step is held at its length:
    each Newton step solved exactly in the links' geometric-stiffness metric (a loaded link
@@ -47,79 +47,82 @@ from ..particles import Particles
 from . import body_solver, direct, parallel, remeasure, stages
 from .kernels import Bodies, ContactSet
 from .partition import block_rows
+from .settings import SolverSettings
 
 MODES = ("sequential", "worst-first")
 #: Older names accepted for the default mode (the resolver's "auto" and "sweep").
 ALIASES = {"auto": "sequential", "sweep": "sequential"}
 
-#: Velocity passes stop once no contact's velocity changes by more than this [m/s] in a pass.
-VELOCITY_TOLERANCE = 1e-4
-#: Impact passes stop once no contact closes faster than its acceleration by more than this.
-IMPACT_TOLERANCE = 1e-3
-#: Projection stops once no penetration exceeds this × dt [m/s × s] (at 60 Hz, 1.7 µm).
-PROJECTION_TOLERANCE = 1e-4
-#: Default caps on the passes of each stage (they end earlier once converged).
-MAX_VELOCITY_PASSES = 15
-MAX_IMPACT_PASSES = 8
-MAX_PROJECTION_PASSES = 15
-#: ... and on the projection of a set too large for the exact solve (more than
-#: ``direct.DIRECT_MAX_CONTACTS`` rows): there the slow tail of Gauss–Seidel is all that the
-#: passes after the third buy. Measured on the settled 10 000-sphere pit (35 000 rows), the
-#: largest depth after each pass: 10.6, 2.2, 0.98, 0.88, 0.85 ... 0.69 mm at the 15th, so
-#: passes 5-15 cost 70 % of the projection for 0.2 mm; what is left is projected again next
-#: step. With 4: overlap after 600 steps 1.2 mm (1 % of the diameter is 10 mm), mean speed
-#: unchanged; the 1000-sphere pile's largest one-step energy rise 0.056 J (its test's bound 0.2).
-MAX_LARGE_PROJECTION_PASSES = 4
-#: Sets too large for the exact solve (more than ``direct.DIRECT_MAX_CONTACTS`` rows) have
-#: their velocity passes over-relaxed by this factor ω (projected successive over-relaxation:
-#: each row steps ω times its own answer, the clamp still applied; ODE's QuickStep does the
-#: same), and at most ``MAX_LARGE_VELOCITY_PASSES`` of them. Gauss–Seidel's slow tail on a
-#: pile is a long-wavelength error, which plain passes shrink a little each; ω > 1 shrinks it
-#: faster. Measured on the pit after 600 steps (N = 1 000, seeds 0-5, mean speed over the last
-#: 100 steps / largest overlap): 15 plain passes 0.052 m/s / 2.1 mm; 10 plain 0.061 / 2.3; 10
-#: at ω = 1.3, 1.5, 1.6, 1.7: 0.066 / 1.1, 0.042 / 0.54, 0.045 / 0.45, 0.048 / 0.43; 8 at 1.5:
-#: 0.048 / 0.86. Seeds 0-15, mean speed over steps 400-600: 15 plain 0.063 ± 0.003, 10 at 1.5
-#: 0.056 ± 0.004 (the first pass left plain: 0.065 ± 0.004); largest overlap 2.1 / 0.9 mm.
-#: N = 10 000: 15 plain 0.076 / 1.7, 10 at 1.5 0.065 / 0.68 mm, and a third less time in the
-#: passes. A row with nothing else on its particles takes (1 - ω)^k of its error after k
-#: passes (0.1 % after 10) where plain passes solve it in one.
-LARGE_SET_RELAXATION = 1.5
-MAX_LARGE_VELOCITY_PASSES = 10
-#: A small contact set still unconverged after this many passes gets the exact solve.
-DIRECT_AFTER_PASSES = 10
-#: A small set's projection is repeated on its contacts measured again where the particles now
-#: are (``remeasure.py``: Newton's method on the position constraints) until no re-measured
-#: violation exceeds the tolerance, at most this many times. Only sets whose particles moved
-#: far enough for the linear depths to be off need any: a resting pile or hanging chain needs
-#: none, and keeps its bits. Measured over 600 steps at dt = 1/60 of chains pinned at one end
-#: and released level: 30 links of 0.3 m, no iteration on 83 steps, one on 504, two on 13
-#: (link error 155 % → 0.001 %; 15 % of the step's time); 6 links of 0.5 m, one on half the
-#: steps (5 %); piles of 20 and 40 spheres in a box, none. With the geometric-stiffness
-#: metric and line search (issue 26): 30 links, none on 78 steps, one on 522; 6 links, one
-#: on 308 of 600; the swinging 1 kg rod + 1000 kg cable (dt = 1/32), 1-6 (mostly 4-6); 50
-#: rods + 1000 kg released level, 1-13.
-MAX_NEWTON_PROJECTIONS = 25
-#: Each Newton step is halved at most this many times looking for one that lowers the
-#: violations (the line search); after that the iterations stop (nothing can move: a rod
-#: between two pinned particles at the wrong distance costs one iteration a step).
-LINE_SEARCH_HALVINGS = 30
-#: ... if it is ill-conditioned the way Gauss–Seidel cannot handle: inverse masses of its
-#: particles this far apart, or a rod among its rows. A pile of equal spheres converges slowly
-#: too, but passes bring it to rest, and the exact solve cost it ~1 s a step (measured: the
-#: 100-sphere pit, 300 contacts, 157 active-set solves in 100 steps, 152 s of 161).
-DIRECT_MIN_MASS_RATIO = 10.0
-#: ... or has at most this many rows, where the exact solve costs little (a few dense solves of
-#: this size) and ends a slow chain at once.
-DIRECT_ALWAYS_CONTACTS = 64
-#: From this many contacts on, the velocity and projection passes run on every core, block by
-#: block (``partition.py``, ``parallel.py``); below, in row order on one. The choice depends
-#: on the contacts only, never on the threads, so any thread count gives the same bits.
-#: Measured on the 10 000-sphere pit (35 000 contacts, 2 cores shared with other work, load
-#: ~10): 80 ms a step serially, 108 ms on the parallel path with 1 thread and 108–138 ms with
-#: 2; it did not pay at any size measured, so it starts above them all. Measured again with the
-#: groups' rows laid out contiguously (session 21): the main phase runs 1.36× faster on two
-#: threads than on one (a compute-bound loop: 2.0×), still slower than the serial sweep.
-PARALLEL_MIN_CONTACTS = 1_000_000
+# The tuning numbers are ``SolverSettings`` fields (``settings.py``, on ``World``); what was
+# measured when each default was chosen:
+# Velocity passes stop once no contact's velocity changes by more than this [m/s] in a pass.
+#   -> ``velocity_tolerance`` = 1e-4
+# Impact passes stop once no contact closes faster than its acceleration by more than this.
+#   -> ``impact_tolerance`` = 1e-3
+# Projection stops once no penetration exceeds this × dt [m/s × s] (at 60 Hz, 1.7 µm).
+#   -> ``projection_tolerance`` = 1e-4
+# Default caps on the passes of each stage (they end earlier once converged).
+#   -> ``max_velocity_passes`` = 15
+#   -> ``max_impact_passes`` = 8
+#   -> ``max_projection_passes`` = 15
+# ... and on the projection of a set too large for the exact solve (more than
+# ``direct_max_contacts`` rows): there the slow tail of Gauss–Seidel is all that the
+# passes after the third buy. Measured on the settled 10 000-sphere pit (35 000 rows), the
+# largest depth after each pass: 10.6, 2.2, 0.98, 0.88, 0.85 ... 0.69 mm at the 15th, so
+# passes 5-15 cost 70 % of the projection for 0.2 mm; what is left is projected again next
+# step. With 4: overlap after 600 steps 1.2 mm (1 % of the diameter is 10 mm), mean speed
+# unchanged; the 1000-sphere pile's largest one-step energy rise 0.056 J (its test's bound 0.2).
+#   -> ``max_large_projection_passes`` = 4
+# Sets too large for the exact solve (more than ``direct_max_contacts`` rows) have
+# their velocity passes over-relaxed by this factor ω (projected successive over-relaxation:
+# each row steps ω times its own answer, the clamp still applied; ODE's QuickStep does the
+# same), and at most ``max_large_velocity_passes`` of them. Gauss–Seidel's slow tail on a
+# pile is a long-wavelength error, which plain passes shrink a little each; ω > 1 shrinks it
+# faster. Measured on the pit after 600 steps (N = 1 000, seeds 0-5, mean speed over the last
+# 100 steps / largest overlap): 15 plain passes 0.052 m/s / 2.1 mm; 10 plain 0.061 / 2.3; 10
+# at ω = 1.3, 1.5, 1.6, 1.7: 0.066 / 1.1, 0.042 / 0.54, 0.045 / 0.45, 0.048 / 0.43; 8 at 1.5:
+# 0.048 / 0.86. Seeds 0-15, mean speed over steps 400-600: 15 plain 0.063 ± 0.003, 10 at 1.5
+# 0.056 ± 0.004 (the first pass left plain: 0.065 ± 0.004); largest overlap 2.1 / 0.9 mm.
+# N = 10 000: 15 plain 0.076 / 1.7, 10 at 1.5 0.065 / 0.68 mm, and a third less time in the
+# passes. A row with nothing else on its particles takes (1 - ω)^k of its error after k
+# passes (0.1 % after 10) where plain passes solve it in one.
+#   -> ``large_set_relaxation`` = 1.5
+#   -> ``max_large_velocity_passes`` = 10
+# A small contact set still unconverged after this many passes gets the exact solve.
+#   -> ``direct_after_passes`` = 10
+# A small set's projection is repeated on its contacts measured again where the particles now
+# are (``remeasure.py``: Newton's method on the position constraints) until no re-measured
+# violation exceeds the tolerance, at most this many times. Only sets whose particles moved
+# far enough for the linear depths to be off need any: a resting pile or hanging chain needs
+# none, and keeps its bits. Measured over 600 steps at dt = 1/60 of chains pinned at one end
+# and released level: 30 links of 0.3 m, no iteration on 83 steps, one on 504, two on 13
+# (link error 155 % → 0.001 %; 15 % of the step's time); 6 links of 0.5 m, one on half the
+# steps (5 %); piles of 20 and 40 spheres in a box, none. With the geometric-stiffness
+# metric and line search (issue 26): 30 links, none on 78 steps, one on 522; 6 links, one
+# on 308 of 600; the swinging 1 kg rod + 1000 kg cable (dt = 1/32), 1-6 (mostly 4-6); 50
+# rods + 1000 kg released level, 1-13.
+#   -> ``max_newton_projections`` = 25
+# Each Newton step is halved at most this many times looking for one that lowers the
+# violations (the line search); after that the iterations stop (nothing can move: a rod
+# between two pinned particles at the wrong distance costs one iteration a step).
+#   -> ``line_search_halvings`` = 30
+# ... if it is ill-conditioned the way Gauss–Seidel cannot handle: inverse masses of its
+# particles this far apart, or a rod among its rows. A pile of equal spheres converges slowly
+# too, but passes bring it to rest, and the exact solve cost it ~1 s a step (measured: the
+# 100-sphere pit, 300 contacts, 157 active-set solves in 100 steps, 152 s of 161).
+#   -> ``direct_min_mass_ratio`` = 10.0
+# ... or has at most this many rows, where the exact solve costs little (a few dense solves of
+# this size) and ends a slow chain at once.
+#   -> ``direct_always_contacts`` = 64
+# From this many contacts on, the velocity and projection passes run on every core, block by
+# block (``partition.py``, ``parallel.py``); below, in row order on one. The choice depends
+# on the contacts only, never on the threads, so any thread count gives the same bits.
+# Measured on the 10 000-sphere pit (35 000 contacts, 2 cores shared with other work, load
+# ~10): 80 ms a step serially, 108 ms on the parallel path with 1 thread and 108–138 ms with
+# 2; it did not pay at any size measured, so it starts above them all. Measured again with the
+# groups' rows laid out contiguously (session 21): the main phase runs 1.36× faster on two
+# threads than on one (a compute-bound loop: 2.0×), still slower than the serial sweep.
+#   -> ``parallel_min_contacts`` = 1_000_000
 
 
 @dataclass(frozen=True)
@@ -141,17 +144,20 @@ class Solver:
     Args:
         mode: "sequential" (default; see the module docstring) or "worst-first" (the book's).
         max_passes: Cap on velocity passes ("sequential") or on single-contact resolutions
-            ("worst-first"); None: ``MAX_VELOCITY_PASSES`` (``MAX_LARGE_VELOCITY_PASSES`` for a
+            ("worst-first"); None: ``max_velocity_passes`` (``max_large_velocity_passes`` for a
             set too large for the exact solve), or 2 × contacts as in the book.
         restitution_threshold: Closing speeds below this [m/s] do not bounce; 0 (the default)
             hides no inelasticity: the resting-contact trick keeps piles still without it.
+        settings: The tuning numbers (``SolverSettings``; its defaults when None).
     """
 
     def __init__(self, mode: str = "sequential", *, max_passes: int | None = None,
-                 restitution_threshold: float = 0.0) -> None:
+                 restitution_threshold: float = 0.0,
+                 settings: SolverSettings | None = None) -> None:
         self.mode = mode
         self.max_passes = max_passes
         self.restitution_threshold = restitution_threshold
+        self.settings = SolverSettings() if settings is None else settings
 
     @property
     def mode(self) -> str:
@@ -210,33 +216,35 @@ class Solver:
 
     def _sequential(self, p, bod, con, contacts, history, dt) -> tuple[SolveStats, ContactSet]:
         threshold = float(self.restitution_threshold)
+        st = self.settings
         history.recall(contacts.key, con.impulse, con.tangent)
         blocks = block_rows(con.a, con.b, p.position) \
-            if contacts.count >= PARALLEL_MIN_CONTACTS else None
-        impact_passes, hits = stages.impacts(bod, con, dt, threshold, IMPACT_TOLERANCE,
-                                             MAX_IMPACT_PASSES)
+            if contacts.count >= st.parallel_min_contacts else None
+        impact_passes, hits = stages.impacts(bod, con, dt, threshold, st.impact_tolerance,
+                                             st.max_impact_passes)
         if self.max_passes is not None:
             passes = int(self.max_passes)
         else:
-            passes = MAX_LARGE_VELOCITY_PASSES if _large(con) else MAX_VELOCITY_PASSES
+            passes = st.max_large_velocity_passes if _large(con, st) \
+                else st.max_velocity_passes
         anchors = contacts.anchors
         anchors = _NO_ANCHORS if anchors is None else anchors
-        small = _direct_may_help(con, p.position, anchors)
+        small = _direct_may_help(con, p.position, anchors, st)
         before = (p.kinetic_energy(), p.velocity.copy(), bod.disp.copy())
         stages.warm_start(bod, con, dt)
-        velocity_passes, used = self._velocities(bod, con, dt, passes, blocks, small)
+        velocity_passes, used = self._velocities(bod, con, dt, passes, blocks, small, st)
         cold = p.kinetic_energy() > before[0] * (1.0 + 1e-9) + 1e-15
         if cold:  # the warm start added energy that the passes did not take back: redo cold
             p.velocity[:] = before[1]
             bod.disp[:] = before[2]
             con.impulse[:] = 0.0
             con.tangent[:] = 0.0
-            more, used2 = self._velocities(bod, con, dt, passes, blocks, small)
+            more, used2 = self._velocities(bod, con, dt, passes, blocks, small, st)
             velocity_passes += more
             used += used2
         stages.follow_impulses(bod, con, dt)
-        position_passes, measured = self._positions(bod, con, PROJECTION_TOLERANCE * dt, blocks,
-                                                    small, p.position, anchors, dt)
+        position_passes, measured = self._positions(bod, con, st.projection_tolerance * dt,
+                                                    blocks, small, p.position, anchors, dt, st)
         history.keep(contacts.key, con.impulse,
                      con.tangent if contacts.friction.any() else None)
         return SolveStats(contacts=contacts.count, impact_passes=int(impact_passes),
@@ -245,42 +253,44 @@ class Solver:
                           resolutions=int(hits + used), cold_restart=bool(cold)), measured
 
     @staticmethod
-    def _velocities(bod, con, dt: float, passes: int, blocks, small: bool) -> tuple[int, int]:
+    def _velocities(bod, con, dt: float, passes: int, blocks, small: bool,
+                    st: SolverSettings) -> tuple[int, int]:
         """Gauss–Seidel passes; a ``small`` set (``_direct_may_help``) still unconverged after
-        ``DIRECT_AFTER_PASSES`` gets the exact solve (``direct.py``) and a few passes more for
-        friction; a set too large for it is over-relaxed (``LARGE_SET_RELAXATION``); one split
+        ``direct_after_passes`` gets the exact solve (``direct.py``) and a few passes more for
+        friction; a set too large for it is over-relaxed (``large_set_relaxation``); one split
         into ``blocks`` runs them on every core (``parallel.py``)."""
-        relaxation = LARGE_SET_RELAXATION if _large(con) else 1.0
+        relaxation = st.large_set_relaxation if _large(con, st) else 1.0
         if blocks is not None:
             return parallel.solve_velocities(bod, con, blocks.order, blocks.spans,
-                                             blocks.phase_starts, dt, VELOCITY_TOLERANCE, passes,
+                                             blocks.phase_starts, dt, st.velocity_tolerance, passes,
                                              relaxation)
-        first = min(passes, DIRECT_AFTER_PASSES) if small else passes
-        done, used = stages.solve_velocities(bod, con, dt, VELOCITY_TOLERANCE, first, relaxation)
+        first = min(passes, st.direct_after_passes) if small else passes
+        done, used = stages.solve_velocities(bod, con, dt, st.velocity_tolerance, first,
+                                             relaxation)
         if done < first or not small:
             return done, used  # converged, or a large set at its cap
         direct.solve_velocities(bod, con)
-        more, used2 = stages.solve_velocities(bod, con, dt, VELOCITY_TOLERANCE,
+        more, used2 = stages.solve_velocities(bod, con, dt, st.velocity_tolerance,
                                               max(passes - first, 1), 1.0)
         return done + more, used + used2 + con.a.shape[0]
 
     @staticmethod
     def _positions(bod, con, tolerance: float, blocks, small: bool, position, anchors,
-                   dt: float):
+                   dt: float, st: SolverSettings):
         """Projection passes, with the exact solve for a small set that does not converge
         (on every core for a large set split into ``blocks``), then for a small set the
-        exact solve on its contacts measured again (``MAX_NEWTON_PROJECTIONS``).
+        exact solve on its contacts measured again (``max_newton_projections``).
 
         Returns (passes, the contact set whose linear depths are current: ``con`` or the
         re-measured one)."""
         if blocks is not None:
             return parallel.project_positions(bod, con, blocks.order, blocks.spans,
                                               blocks.phase_starts, tolerance,
-                                              MAX_LARGE_PROJECTION_PASSES)[0], con
-        first = min(DIRECT_AFTER_PASSES, MAX_PROJECTION_PASSES) if small \
-            else MAX_PROJECTION_PASSES
-        if _large(con):
-            first = MAX_LARGE_PROJECTION_PASSES
+                                              st.max_large_projection_passes)[0], con
+        first = min(st.direct_after_passes, st.max_projection_passes) if small \
+            else st.max_projection_passes
+        if _large(con, st):
+            first = st.max_large_projection_passes
         done, largest = stages.project_positions(bod, con, tolerance, first)
         if not small:
             return done, con
@@ -289,16 +299,17 @@ class Solver:
             stages.current_depths(bod, con, depths)
             direct.project_positions(bod, con, depths)
             more, _ = stages.project_positions(bod, con, tolerance,
-                                               max(MAX_PROJECTION_PASSES - first, 1))
+                                               max(st.max_projection_passes - first, 1))
             done += more
-        newton, measured = _remeasured(position, anchors, bod, con, tolerance, dt)
+        newton, measured = _remeasured(position, anchors, bod, con, tolerance, dt, st)
         return done + newton, measured
 
 
 _NO_ANCHORS = np.empty((0, 3))
 
 
-def _remeasured(position, anchors, bod, con, tolerance: float, dt: float):
+def _remeasured(position, anchors, bod, con, tolerance: float, dt: float,
+                st: SolverSettings):
     """Newton iterations on the position constraints (``remeasure.py``): the exact projection
     of the contacts measured again, until no violation exceeds ``tolerance``. Each step is
     solved in the geometric-stiffness metric (``remeasure.stiff_metric``, the links' tension:
@@ -321,7 +332,7 @@ def _remeasured(position, anchors, bod, con, tolerance: float, dt: float):
     start = np.empty_like(bod.disp)
     trial = (np.empty((m, 3)), np.empty(m), np.empty(m), np.empty(m))
     iterations = 0
-    while iterations < MAX_NEWTON_PROJECTIONS and worst > tolerance:
+    while iterations < st.max_newton_projections and worst > tolerance:
         iterations += 1
         start[:] = bod.disp
         metric = remeasure.stiff_metric(parts, col, bod.inv_mass, con.a, con.b, n, lengths,
@@ -330,7 +341,7 @@ def _remeasured(position, anchors, bod, con, tolerance: float, dt: float):
                                        bod.disp)
         step = bod.disp - start
         fraction = 1.0
-        for _ in range(LINE_SEARCH_HALVINGS):
+        for _ in range(st.line_search_halvings):
             tried = remeasure.relinearize(position, anchors, bod, con, *trial)
             tried_merit = remeasure.merit(trial[2], con.bil)
             if tried_merit < merit:
@@ -376,21 +387,21 @@ def _link_velocities(position, anchors, bod, con, dt: float) -> None:
                        target, np.zeros(links.shape[0]), bod.vel, bod.inv_mass)
 
 
-def _large(con) -> bool:
+def _large(con, st: SolverSettings) -> bool:
     """Too large for the exact solve: over-relaxed velocity passes, fewer projection passes."""
-    return con.a.shape[0] > direct.DIRECT_MAX_CONTACTS
+    return con.a.shape[0] > st.direct_max_contacts
 
 
-def _direct_may_help(con, position, anchors) -> bool:
+def _direct_may_help(con, position, anchors, st: SolverSettings) -> bool:
     """Small enough for the exact solve, and either tiny, or a chain of links (rods; cables
     and anchored links, which ``remeasure.has_links`` tells from a pile's contacts: Gauss–Seidel
     crawls along a chain, measured: a 100-cable chain released level stretched 371 %), or
-    ill-conditioned as links under heavy loads are (``DIRECT_MIN_MASS_RATIO``)."""
-    if _large(con):
+    ill-conditioned as links under heavy loads are (``direct_min_mass_ratio``)."""
+    if _large(con, st):
         return False
-    if con.a.shape[0] <= DIRECT_ALWAYS_CONTACTS or con.bil.any() \
+    if con.a.shape[0] <= st.direct_always_contacts or con.bil.any() \
             or remeasure.has_links(position, anchors, con):
         return True
     w = np.concatenate([con.wa, con.wb])
     w = w[w > 0.0]
-    return w.shape[0] > 0 and float(w.max()) >= DIRECT_MIN_MASS_RATIO * float(w.min())
+    return w.shape[0] > 0 and float(w.max()) >= st.direct_min_mass_ratio * float(w.min())
