@@ -9,8 +9,9 @@ frames/s of the full renderer with a synchronous readback (``read_rgb``), with t
 readback (``read_rgb_later``), without readback, and of the bare impostor draw with and without
 readback, their rounds interleaved (best of 3); full / bare; the CPU per ``render`` with the
 GPU wait excluded (many renders, then one finish); GPU milliseconds per frame from timer
-queries (full, full without ground and shadows, bare). Then, with --storm, particle_storm
-stepped and drawn window-less. Ends with one table row per size (``ROW``-prefixed lines).
+queries (full, without shadows, without ground and shadows, bare). Then, with --storm,
+particle_storm stepped and drawn window-less. Ends with one table row per size (lines that
+start ``ROW``).
 """
 
 from __future__ import annotations
@@ -23,9 +24,9 @@ from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 
-from bench_render import bare_impostors, demo_fps, sphere_scene, timed_together  # noqa: E402
+from bench_render import bare_impostors, demo_fps, sphere_scene, timed_together
 
-from pointmass.render import OrbitCamera, Renderer, create_headless_context  # noqa: E402
+from pointmass.render import OrbitCamera, Renderer, create_headless_context
 
 
 def gpu_ms(ctx, fn, n: int = 30) -> float:
@@ -86,6 +87,9 @@ def one_size(ctx, n: int, size, frames: int, path: str | None, save: str | None)
     out["cpu_draw"] = cpu_ms(ctx, lambda: r.draw(frame, cam), k)
     try:
         out["gpu_full"] = gpu_ms(ctx, lambda: r.draw(frame, cam), k)
+        r.shadows = False
+        out["gpu_no_shadows"] = gpu_ms(ctx, lambda: r.draw(frame, cam), k)
+        r.shadows = True
         no_ground = dataclasses.replace(frame, show_ground=False)
         out["gpu_no_ground"] = gpu_ms(ctx, lambda: r.draw(no_ground, cam), k)
         out["gpu_bare"] = gpu_ms(ctx, bare, k)
@@ -126,8 +130,8 @@ def main() -> None:
     if args.storm:
         demo_fps(ctx, "particle_storm", args.set, size, args.path, args.storm_frames)
     head = ("spheres", "full+read", "full+PBO", "full", "bare+read", "bare", "f/b read",
-            "f/b", "CPU render", "CPU bare", "capture", "draw", "GPU full", "GPU no ground",
-            "GPU bare")
+            "f/b", "CPU render", "CPU bare", "capture", "draw", "GPU full", "GPU no shadows",
+            "GPU no ground", "GPU bare")
     print("ROW | " + " | ".join(head) + f" | {args.label}")
     for n, o in rows:
         cells = [f"{n}", *(f"{o[k]:.1f}" for k in ("full_read", "full_pbo", "full",
@@ -135,7 +139,7 @@ def main() -> None:
                  f"{o['full_read'] / o['bare_read']:.2f}", f"{o['full'] / o['bare']:.2f}",
                  *(f"{o[k]:.3f}" if k in o else "-"
                    for k in ("cpu_render", "cpu_bare", "cpu_capture", "cpu_draw", "gpu_full",
-                             "gpu_no_ground", "gpu_bare"))]
+                             "gpu_no_shadows", "gpu_no_ground", "gpu_bare"))]
         print("ROW | " + " | ".join(cells) + f" | {args.label}", flush=True)
 
 

@@ -141,6 +141,8 @@ class Renderer:
         self._read = None
         self._backdrop = None
         self._backdrop_key = None
+        self.shadows = True
+        """Draw the blob shadows (False: none; a measure of what they cost)."""
         self.cache_backdrop = self.path == "software"
         """Keep the sky and ground between frames while the camera stays put (no MSAA): the
         software path's saving. Not on the hardware path: there redrawing them costs well under
@@ -259,7 +261,8 @@ class Renderer:
         scene = frame                                # the backdrop, boxes and planes
         t1 = time.perf_counter()
         n_casters = 0
-        if scene.show_ground:
+        shadows = scene.show_ground and self.shadows
+        if shadows:
             n = frame.particles                      # anchors cast no shadow
             if hardware:
                 parts = [p for p in (self._spheres.host[:n], self._shadows.box_rows(scene),
@@ -308,9 +311,9 @@ class Renderer:
             self._draw_backdrop(scene, camera)
 
         ctx.enable(moderngl.BLEND)
-        if hardware and scene.show_ground:
+        if hardware and shadows:
             self._draw_shadow_blobs(target, scene, n_casters)
-        elif scene.show_ground and self._shadows.region[2] > 0:
+        elif shadows and self._shadows.region[2] > 0:
             # Shadows after the spheres: ground hidden behind a sphere is skipped early.
             target.depth_mask = False
             so = self.programs["shadow_overlay"]
