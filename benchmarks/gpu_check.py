@@ -122,18 +122,15 @@ def main() -> None:
     ctx = create_headless_context()
     print(f"GL renderer: {ctx.info['GL_RENDERER']} ({ctx.info['GL_VERSION']}); "
           f"{size[0]}x{size[1]}; {args.label}", flush=True)
-    rows = []
-    for n in (int(s) for s in args.sizes.split(",") if s):
-        frames = max(10, round(args.frames * min(1.0, (10_000 / n) ** 0.5)))
-        save = f"{args.save_dir}/frame_{n}.png" if args.save_dir else None
-        rows.append((n, one_size(ctx, n, size, frames, args.path, save)))
-    if args.storm:
-        demo_fps(ctx, "particle_storm", args.set, size, args.path, args.storm_frames)
     head = ("spheres", "full+read", "full+PBO", "full", "bare+read", "bare", "f/b read",
             "f/b", "CPU render", "CPU bare", "capture", "draw", "GPU full", "GPU no shadows",
             "GPU no ground", "GPU bare")
-    print("ROW | " + " | ".join(head) + f" | {args.label}")
-    for n, o in rows:
+    print("ROW | " + " | ".join(head) + f" | {args.label}", flush=True)
+    for n in (int(s) for s in args.sizes.split(",") if s):
+        frames = max(10, round(args.frames * min(1.0, (10_000 / n) ** 0.5)))
+        save = f"{args.save_dir}/frame_{n}.png" if args.save_dir else None
+        o = one_size(ctx, n, size, frames, args.path, save)
+        # Each row as soon as it is measured: a run cut short keeps what it had.
         cells = [f"{n}", *(f"{o[k]:.1f}" for k in ("full_read", "full_pbo", "full",
                                                    "bare_read", "bare")),
                  f"{o['full_read'] / o['bare_read']:.2f}", f"{o['full'] / o['bare']:.2f}",
@@ -141,6 +138,8 @@ def main() -> None:
                    for k in ("cpu_render", "cpu_bare", "cpu_capture", "cpu_draw", "gpu_full",
                              "gpu_no_shadows", "gpu_no_ground", "gpu_bare"))]
         print("ROW | " + " | ".join(cells) + f" | {args.label}", flush=True)
+    if args.storm:
+        demo_fps(ctx, "particle_storm", args.set, size, args.path, args.storm_frames)
 
 
 if __name__ == "__main__":
