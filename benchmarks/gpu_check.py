@@ -87,9 +87,10 @@ def one_size(ctx, n: int, size, frames: int, path: str | None, save: str | None)
     out["cpu_draw"] = cpu_ms(ctx, lambda: r.draw(frame, cam), k)
     try:
         out["gpu_full"] = gpu_ms(ctx, lambda: r.draw(frame, cam), k)
-        r.shadows = False
-        out["gpu_no_shadows"] = gpu_ms(ctx, lambda: r.draw(frame, cam), k)
-        r.shadows = True
+        if hasattr(r, "shadows"):               # (not on a checkout from before it)
+            r.shadows = False
+            out["gpu_no_shadows"] = gpu_ms(ctx, lambda: r.draw(frame, cam), k)
+            r.shadows = True
         no_ground = dataclasses.replace(frame, show_ground=False)
         out["gpu_no_ground"] = gpu_ms(ctx, lambda: r.draw(no_ground, cam), k)
         out["gpu_bare"] = gpu_ms(ctx, bare, k)
