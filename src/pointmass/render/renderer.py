@@ -8,7 +8,10 @@ as centre, radius, color in float32 rows, every line), ``draw`` uploads it in on
 then the background and ground grid (kept from the last frame while the camera stays put),
 sphere impostors, boxes and opaque planes, the blob shadows (a darkness map splatted on the
 CPU, laid on the ground in one pass), lines, translucent planes, and last the glowing
-particles and their trails, added onto the image (order-free, so never sorted).
+particles and their trails, added onto the image (order-free, so never sorted). The hardware
+path draws the ground and sky after the opaque things instead, so the GPU skips their hidden
+fragments. The camera and light reach every program through one uniform buffer
+(``frame_block``); other uniforms are set only when they change (``uniforms``).
 """
 
 from __future__ import annotations
