@@ -81,9 +81,14 @@ def timed_together(fns, frames: int, warmup: int = 3, rounds: int = 5, sync=None
 def bare_impostors(ctx: moderngl.Context, renderer: Renderer, scene: pm.Scene, camera, *,
                    read: bool = True):
     """A minimal instanced-impostor draw of the scene's spheres into the renderer's fbo, plus
-    the same readback (``read``; else none, as a window): one upload, clear, one draw call of
-    spheres.glsl, nothing else."""
+    the same readback (``read``; else none, as a window): one upload, clear, one write of the camera
+    block, one draw call of spheres.glsl, nothing else."""
     prog = renderer.programs["spheres"]
+    try:
+        from pointmass.render.frame_block import FrameUniforms
+        frame_block = FrameUniforms(ctx, [prog])   # the camera and light (one buffer write)
+    except ImportError:                            # a checkout from before the Frame block
+        frame_block = None
     quad = ctx.buffer(np.array([-1, -1, 1, -1, -1, 1, 1, 1], "f4").tobytes())
     p = scene.world.particles
     data = np.zeros((p.count, 8), "f4")
@@ -102,10 +107,14 @@ def bare_impostors(ctx: moderngl.Context, renderer: Renderer, scene: pm.Scene, c
         renderer.fbo.use()
         ctx.clear(0.1, 0.1, 0.1, 1.0, depth=1.0)
         ctx.enable(moderngl.DEPTH_TEST)
-        prog["u_view"].write(view.tobytes())
-        prog["u_proj"].write(proj.tobytes())
-        prog["u_light"].value = (0.0, 0.6, 0.8)
-        prog["u_sky"].value = (0.0, 1.0, 0.0)
+        if frame_block is not None:
+            frame_block.write(view, proj, view @ proj, (0.0, 0.6, 0.8), (0.0, 1.0, 0.0),
+                              (0.0, 0.6, 0.8), (float(w), float(h)), 1.0)
+        else:
+            prog["u_view"].write(view.tobytes())
+            prog["u_proj"].write(proj.tobytes())
+            prog["u_light"].value = (0.0, 0.6, 0.8)
+            prog["u_sky"].value = (0.0, 1.0, 0.0)
         vao.render(moderngl.TRIANGLE_STRIP, vertices=4, instances=p.count)
         if read:
             renderer.read_rgb()

@@ -21,9 +21,7 @@ in vec4 in_sphere;        // xyz centre [m], w radius [m] (0 hides it)
 in vec4 in_color;         // rgb in [0, 1], a: 1 to glow
 #endif
 
-uniform mat4 u_view;
-uniform mat4 u_proj;
-uniform vec2 u_viewport;  // framebuffer size [px]
+#include <frame>
 uniform float u_min_core; // smallest core radius [px]
 uniform float u_halo;     // halo radius / core radius
 

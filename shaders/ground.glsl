@@ -6,7 +6,7 @@
 #if defined VERTEX_SHADER
 
 in vec2 in_corner;        // [-1, 1]^2
-uniform mat4 u_view_proj;
+#include <frame>
 uniform vec3 u_center;    // grid centre [m] (its y is the ground height)
 uniform float u_extent;   // half size of the quad [m]
 out vec3 v_world;

@@ -11,8 +11,7 @@ in vec3 in_end;           // [m]
 in vec4 in_color;         // rgba
 in vec2 in_style;         // x: width [px], y: dash period [m] (0 = solid)
 
-uniform mat4 u_view_proj;
-uniform vec2 u_viewport;  // framebuffer size [px]
+#include <frame>
 uniform float u_caps;     // 1: extend past each end by half a width (joints without gaps);
                           // 0: not (additive trails, where overlaps would double the light)
 

@@ -13,9 +13,7 @@ in vec4 in_link;          // rest length [m], kind (0 spring, 1 bungee, 2 cable,
                           // width [px at 720 rows], dash period when slack [m] (0: none)
 
 uniform sampler2D u_positions;  // RGB32F, particle i at (i % width, i / width)
-uniform mat4 u_view_proj;
-uniform vec2 u_viewport;
-uniform float u_width_scale;
+#include <frame>
 uniform float u_strain_full;
 uniform vec3 u_compressed, u_rest, u_stretched, u_bungee, u_cable, u_rod;
 

@@ -7,7 +7,7 @@
 
 in vec3 in_position;
 in vec3 in_normal;
-uniform mat4 u_view_proj;
+#include <frame>
 out vec3 v_normal;
 #if defined INSTANCED
 in vec4 in_model_x;       // the model's rows: scaled axes' x components, then the centre's x
@@ -38,7 +38,7 @@ flat in vec4 v_color;
 #else
 uniform vec4 u_color;
 #endif
-uniform vec3 u_light;     // unit vector toward the light, world space
+#include <frame>
 out vec4 f_color;
 
 void main() {
@@ -49,7 +49,7 @@ void main() {
 #endif
     vec3 n = normalize(v_normal);
     if (!gl_FrontFacing) n = -n;
-    float diffuse = abs(dot(n, u_light));
+    float diffuse = abs(dot(n, u_light_world));
     float hemi = 0.5 + 0.5 * n.y;
     vec3 rgb = color.rgb * (mix(0.25, 0.45, hemi) + 0.7 * diffuse);
     f_color = vec4(rgb, color.a);

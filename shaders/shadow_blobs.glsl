@@ -17,7 +17,7 @@ in vec4 in_sphere;        // sphere rows: xyz centre, w radius [m]
 in vec4 in_color;         // a: 1 glows
 #endif
 
-uniform mat4 u_view_proj;
+#include <frame>
 uniform float u_ground;       // ground height [m]
 uniform float u_strength;     // darkness under a resting sphere
 uniform float u_fade_reach;   // shadow_splat.FADE_REACH [m]

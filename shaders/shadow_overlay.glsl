@@ -5,7 +5,7 @@
 #if defined VERTEX_SHADER
 
 in vec2 in_corner;            // [-1, 1]^2
-uniform mat4 u_view_proj;
+#include <frame>
 uniform vec3 u_shadow_region; // x0, z0 [m] and side [m]
 uniform float u_ground;       // ground height [m]
 out vec2 v_uv;

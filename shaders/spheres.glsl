@@ -18,8 +18,7 @@ in vec4 in_sphere;        // xyz centre [m], w radius [m] (0 hides it)
 in vec4 in_color;         // rgb in [0, 1], a: 1 glows (glow.glsl draws it instead)
 #endif
 
-uniform mat4 u_view;
-uniform mat4 u_proj;
+#include <frame>
 
 out vec3 v_center;        // sphere centre, eye space
 out vec3 v_point;         // this corner, eye space
@@ -75,9 +74,7 @@ in vec3 v_point;
 in vec3 v_color;
 flat in float v_radius;
 
-uniform mat4 u_proj;
-uniform vec3 u_light;      // unit vector toward the light, eye space
-uniform vec3 u_sky;        // unit world-up, eye space
+#include <frame>
 
 out vec4 f_color;
 
@@ -96,8 +93,8 @@ void main() {
     gl_FragDepth = 0.5 * clip_z / clip_w + 0.5;
 
     // Blinn-Phong with a hemispherical ambient term (sky above, ground bounce below).
-    float diffuse = max(dot(n, u_light), 0.0);
-    float s = max(dot(n, normalize(u_light - ray)), 0.0);
+    float diffuse = max(dot(n, u_light_eye), 0.0);
+    float s = max(dot(n, normalize(u_light_eye - ray)), 0.0);
     s *= s; s *= s; s *= s; s *= s; s *= s;    // s^32 without pow(): cheaper on llvmpipe
     float spec = s;
     float hemi = 0.5 + 0.5 * dot(n, u_sky);

@@ -43,6 +43,7 @@ class OrbitCamera:
     min_distance: float = 0.1
     max_distance: float = 1000.0
     keep_in_view: bool = False
+    _view: tuple = field(default=(None, None), init=False, repr=False, compare=False)
 
     def __post_init__(self) -> None:
         self.target = np.asarray(self.target, dtype=np.float64).reshape(3).copy()
@@ -84,8 +85,14 @@ class OrbitCamera:
 
     # -- matrices --------------------------------------------------------------------------------
     def view_matrix(self) -> np.ndarray:
-        """World → eye space, (4, 4) float32 (pyrr convention)."""
-        return matrix44.create_look_at(self.eye, self.target, _UP, dtype=np.float32)
+        """World → eye space, (4, 4) float32 (pyrr convention; a new array)."""
+        # Kept while the pose stays put: pyrr's look-at costs ~0.1 ms of numpy calls, as much
+        # as a whole frame's GL calls.
+        key = (self.target.tobytes(), self.distance, self.yaw, self.pitch)
+        if self._view[0] != key:
+            self._view = (key, matrix44.create_look_at(self.eye, self.target, _UP,
+                                                       dtype=np.float32))
+        return self._view[1].copy()
 
     def projection_matrix(self, aspect: float) -> np.ndarray:
         """Eye → clip space for width/height ``aspect``, (4, 4) float32 (pyrr convention)."""

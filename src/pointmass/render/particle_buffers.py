@@ -111,13 +111,14 @@ class ParticleBuffers:
             self._texture_slot = self.slot
         return self.texture
 
-    def draw(self, name: str) -> None:
+    def draw(self, name: str, uniforms) -> None:
         """One instanced draw of every particle with the "spheres", "glow" or "shadow_blobs"
-        program (its uniforms set by the caller)."""
+        program (its other uniforms set by the caller; ``uniforms`` the renderer's
+        ``UniformCache``)."""
         if self.count:
             prog = self.programs[f"{name}_split"]
             if name != "shadow_blobs":
-                prog["u_palette"].value = self.palette
+                uniforms.set(prog, "u_palette", bool(self.palette))
             self.vaos[self.slot][name].render(moderngl.TRIANGLE_STRIP, vertices=4,
                                               instances=self.count)
 

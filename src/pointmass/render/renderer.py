@@ -8,7 +8,10 @@ as centre, radius, color in float32 rows, every line), ``draw`` uploads it in on
 then the background and ground grid (kept from the last frame while the camera stays put),
 sphere impostors, boxes and opaque planes, the blob shadows (a darkness map splatted on the
 CPU, laid on the ground in one pass), lines, translucent planes, and last the glowing
-particles and their trails, added onto the image (order-free, so never sorted).
+particles and their trails, added onto the image (order-free, so never sorted). The hardware
+path draws the ground and sky after the opaque things instead, so the GPU skips their hidden
+fragments. The camera and light reach every program through one uniform buffer
+(``frame_block``); other uniforms are set only when they change (``uniforms``).
 """
 
 from __future__ import annotations
@@ -24,6 +27,7 @@ from ..scene import Scene
 from . import gather, geometry, style
 from .camera import OrbitCamera
 from .frame import FrameState
+from .frame_block import FrameUniforms
 from .gpu_links import LinkBuffers
 from .instances import Instances
 from .look import LookTracker
@@ -32,6 +36,7 @@ from .path import choose_path
 from .readback import AsyncReader
 from .shaders import load_program
 from .shadows import ShadowMap
+from .uniforms import UniformCache
 
 _QUAD = np.array([-1, -1, 1, -1, -1, 1, 1, 1], np.float32)       # triangle strip, [-1, 1]^2
 _PROGRAMS = ("background", "ground", "spheres", "shadow_overlay", "lines", "mesh", "glow")
@@ -75,6 +80,10 @@ class Renderer:
                 prog[f"{name}_split"] = load_program(ctx, name, shader_dir, defines=("SPLIT",))
             prog["links"] = load_program(ctx, "links", shader_dir)
         self.programs = prog
+        # The camera and light: one uniform buffer for every program; the programs' other
+        # uniforms are set only when they change (uniforms.py).
+        self._frame_block = FrameUniforms(ctx, prog.values())
+        self._uniforms = UniformCache()
         self._quad = ctx.buffer(_QUAD.tobytes())
         self._line_quad = ctx.buffer(_LINE_QUAD.tobytes())
         self._cube = ctx.buffer(geometry.cube_mesh().tobytes())
@@ -135,6 +144,8 @@ class Renderer:
         self._read = None
         self._backdrop = None
         self._backdrop_key = None
+        self.shadows = True
+        """Draw the blob shadows (False: none; a measure of what they cost)."""
         self.cache_backdrop = self.path == "software"
         """Keep the sky and ground between frames while the camera stays put (no MSAA): the
         software path's saving. Not on the hardware path: there redrawing them costs well under
@@ -234,12 +245,17 @@ class Renderer:
             self._particles.upload(frame.positions, frame.look)
             if frame.look is not None:
                 self._looks.drawn(frame.look)
+        # One write of the camera and light for every program (frame_block.py).
+        self._frame_block.write(view, proj, vp, style.LIGHT_EYE, sky_eye, light_world,
+                                (float(w), float(h)), max(1.0, h / 720.0))
         n_spheres = self._spheres.put(frame.spheres) if len(frame.spheres) else 0
         n_links = self._links.sync(frame.gpu_links) if hardware else 0
-        dashed = frame.lines[:, 11] > 0.0
-        n_dashed = self._dashed.put(frame.lines[dashed]) if dashed.any() else 0
-        n_lines = self._lines.put(frame.lines[~dashed] if n_dashed else frame.lines) \
-            if len(frame.lines) > n_dashed else 0
+        n_dashed = n_lines = 0
+        if len(frame.lines):
+            dashed = frame.lines[:, 11] > 0.0
+            n_dashed = self._dashed.put(frame.lines[dashed]) if dashed.any() else 0
+            n_lines = self._lines.put(frame.lines[~dashed] if n_dashed else frame.lines) \
+                if len(frame.lines) > n_dashed else 0
         n_glow_trails = self._glow_trails.put(frame.glow_trails) if len(frame.glow_trails) \
             else 0
         n_glow = int(self._spheres.host[:n_spheres, 7].sum()) if n_spheres else 0
@@ -248,95 +264,93 @@ class Renderer:
         scene = frame                                # the backdrop, boxes and planes
         t1 = time.perf_counter()
         n_casters = 0
-        if scene.show_ground:
+        shadows = scene.show_ground and self.shadows
+        if shadows:
             n = frame.particles                      # anchors cast no shadow
             if hardware:
-                n_casters = self._casters.put(np.concatenate(
-                    [self._spheres.host[:n], self._shadows.box_rows(scene),
-                     frame.body_casters]))
+                parts = [p for p in (self._spheres.host[:n], self._shadows.box_rows(scene),
+                                     frame.body_casters) if p is not None and len(p)]
+                if parts:
+                    n_casters = self._casters.put(np.concatenate(parts))
             else:
                 self._shadows.update(scene, self._spheres.host[:n], style.SHADOW_STRENGTH)
         t2 = time.perf_counter()
         self.stats["upload"] = 1e3 * (t1 - t0)
         self.stats["shadows"] = 1e3 * (t2 - t1)
 
-        # The backdrop (sky and ground grid) only changes with the camera and the ground, so
-        # it is drawn once into a cache and copied (color and depth) while they stay put: a
-        # recording or a still camera pays one copy per frame instead of two full-screen passes.
         target = self._msaa if self._msaa is not None else self.fbo
-        key = (view.tobytes(), proj.tobytes(), bool(scene.show_ground),
-               float(scene.ground_height), scene.sky)
-        if self._msaa is None and self.cache_backdrop:
+        cached = not hardware and self._msaa is None and self.cache_backdrop
+        if cached:
+            # The backdrop (sky and ground grid) only changes with the camera and the ground,
+            # so it is drawn once into a cache and copied (color and depth) while they stay
+            # put: a recording or a still camera pays one copy per frame instead of two
+            # full-screen passes.
+            key = (view.tobytes(), proj.tobytes(), bool(scene.show_ground),
+                   float(scene.ground_height), scene.sky)
             if key != self._backdrop_key:
-                self._draw_backdrop(self._backdrop, scene, camera, vp)
+                self._clear(self._backdrop, scene)
+                ctx.enable(moderngl.DEPTH_TEST)
+                ctx.disable(moderngl.BLEND | moderngl.CULL_FACE)
+                self._draw_backdrop(scene, camera)
                 self._backdrop_key = key
             ctx.copy_framebuffer(target, self._backdrop)
             target.use()
             ctx.viewport = (0, 0, w, h)
         else:
-            self._draw_backdrop(target, scene, camera, vp)
-
+            self._clear(target, scene)
         ctx.enable(moderngl.DEPTH_TEST)
         ctx.disable(moderngl.BLEND | moderngl.CULL_FACE)
+        if not cached and not hardware:
+            self._draw_backdrop(scene, camera)
         if n_spheres:
-            sp = self.programs["spheres"]
-            sp["u_view"].write(view.tobytes())
-            sp["u_proj"].write(proj.tobytes())
-            sp["u_light"].value = tuple(float(x) for x in style.LIGHT_EYE)
-            sp["u_sky"].value = tuple(float(x) for x in sky_eye)
             self._spheres.vaos["spheres"].render(moderngl.TRIANGLE_STRIP, vertices=4,
                                                  instances=n_spheres)
         if hardware and self._particles.count:
-            sp = self.programs["spheres_split"]
-            sp["u_view"].write(view.tobytes())
-            sp["u_proj"].write(proj.tobytes())
-            sp["u_light"].value = tuple(float(x) for x in style.LIGHT_EYE)
-            sp["u_sky"].value = tuple(float(x) for x in sky_eye)
-            self._particles.draw("spheres")
-        self._draw_meshes(scene, vp, light_world, translucent=False)
+            self._particles.draw("spheres", self._uniforms)
+        self._draw_meshes(scene, translucent=False)
+        if hardware:
+            # The hardware path draws the backdrop after the opaque things: the GPU then
+            # rejects the ground's and sky's fragments hidden behind them before shading them.
+            self._draw_backdrop(scene, camera)
 
         ctx.enable(moderngl.BLEND)
-        if hardware and scene.show_ground:
-            self._draw_shadow_blobs(target, scene, vp, n_casters)
-        elif scene.show_ground and self._shadows.region[2] > 0:
+        if hardware and shadows:
+            self._draw_shadow_blobs(target, scene, n_casters)
+        elif shadows and self._shadows.region[2] > 0:
             # Shadows after the spheres: ground hidden behind a sphere is skipped early.
             target.depth_mask = False
             so = self.programs["shadow_overlay"]
-            so["u_view_proj"].write(vp.tobytes())
-            so["u_shadow_region"].value = self._shadows.region
-            so["u_ground"].value = float(scene.shadow_height)
-            so["u_shadow"].value = 0
-            so["u_uv_scale"].value = self._shadows.used / self._shadows.texture.width
+            u = self._uniforms
+            u.set(so, "u_shadow_region", self._shadows.region)
+            u.set(so, "u_ground", float(scene.shadow_height))
+            u.set(so, "u_shadow", 0)
+            u.set(so, "u_uv_scale", self._shadows.used / self._shadows.texture.width)
             self._shadows.texture.use(0)
             self._vaos["shadow_overlay"].render(moderngl.TRIANGLE_STRIP, vertices=4)
             target.depth_mask = True
-        ctx.enable(moderngl.BLEND)
-        for name in ("lines", "lines_dashed"):
-            ln = self.programs[name]
-            ln["u_view_proj"].write(vp.tobytes())
-            ln["u_viewport"].value = (float(w), float(h))
-            ln["u_caps"].value = 1.0
-        for lines, n in ((self._lines, n_lines), (self._dashed, n_dashed)):
-            if n:
-                lines.vaos["lines"].render(moderngl.TRIANGLE_STRIP, vertices=4, instances=n)
+        if n_lines or n_dashed:
+            for lines, n in ((self._lines, n_lines), (self._dashed, n_dashed)):
+                if n:
+                    self._uniforms.set(lines.vaos["lines"].program, "u_caps", 1.0)
+                    lines.vaos["lines"].render(moderngl.TRIANGLE_STRIP, vertices=4,
+                                               instances=n)
         if n_links:
-            lk = self.programs["links"]
-            lk["u_view_proj"].write(vp.tobytes())
-            lk["u_viewport"].value = (float(w), float(h))
-            lk["u_width_scale"].value = max(1.0, h / 720.0)
-            lk["u_positions"].value = 0
+            self._uniforms.set(self.programs["links"], "u_positions", 0)
             self._particles.positions_texture().use(0)
             self._links.draw()
-        target.depth_mask = False
-        self._draw_meshes(scene, vp, light_world, translucent=True)
-        if n_glow or n_glow_trails or glow_particles:
-            self._draw_glow(n_spheres if n_glow else 0, n_glow_trails, view, proj,
-                            glow_particles)
-        if n_overlay:
-            ctx.disable(moderngl.DEPTH_TEST)
-            self._overlay.vaos["lines"].render(moderngl.TRIANGLE_STRIP, vertices=4,
-                                               instances=n_overlay)
-        target.depth_mask = True
+        # Translucent planes, glow and the overlay test depth but do not write it.
+        translucent = any(len(p.color) == 4 and p.color[3] < 1.0 for p in scene.planes)
+        if translucent or n_glow or n_glow_trails or glow_particles or n_overlay:
+            target.depth_mask = False
+            self._draw_meshes(scene, translucent=True)
+            if n_glow or n_glow_trails or glow_particles:
+                self._draw_glow(n_spheres if n_glow else 0, n_glow_trails, glow_particles)
+            if n_overlay:
+                ctx.disable(moderngl.DEPTH_TEST)
+                self._uniforms.set(self.programs["lines"], "u_caps", 1.0)
+                self._overlay.vaos["lines"].render(moderngl.TRIANGLE_STRIP, vertices=4,
+                                                   instances=n_overlay)
+            target.depth_mask = True
         ctx.disable(moderngl.BLEND | moderngl.DEPTH_TEST | moderngl.PROGRAM_POINT_SIZE)
 
         if self._msaa is not None:
@@ -344,7 +358,7 @@ class Renderer:
         self.stats["draw_calls"] = 1e3 * (time.perf_counter() - t2)
 
     def _draw_shadow_blobs(self, target: moderngl.Framebuffer, scene: FrameState,
-                           vp: np.ndarray, n_casters: int) -> None:
+                           n_casters: int) -> None:
         """The hardware path's shadows: a soft disc on the ground per caster, multiplied into
         the image (after the spheres, so ground hidden behind them is skipped early)."""
         if not (n_casters or self._particles.count):
@@ -353,105 +367,94 @@ class Renderer:
         target.depth_mask = False
         for name in ("shadow_blobs", "shadow_blobs_split"):
             prog = self.programs[name]
-            prog["u_view_proj"].write(vp.tobytes())
-            prog["u_ground"].value = float(scene.shadow_height)  # the ground or the water
-            prog["u_strength"].value = float(style.SHADOW_STRENGTH)
+            self._uniforms.set(prog, "u_ground", float(scene.shadow_height))  # or the water
+            self._uniforms.set(prog, "u_strength", float(style.SHADOW_STRENGTH))
         if n_casters:
             self._casters.vaos["shadow_blobs"].render(moderngl.TRIANGLE_STRIP, vertices=4,
                                                       instances=n_casters)
-        self._particles.draw("shadow_blobs")
+        self._particles.draw("shadow_blobs", self._uniforms)
         target.depth_mask = True
         self.ctx.blend_func = moderngl.DEFAULT_BLENDING
 
-    def _draw_glow(self, n_spheres: int, n_trails: int, view: np.ndarray,
-                   proj: np.ndarray, particles: bool = False) -> None:
+    def _draw_glow(self, n_spheres: int, n_trails: int, particles: bool = False) -> None:
         """Trails of glowing particles, then the particles (the sphere rows, of which glow.glsl
         keeps the glowing ones), added onto the image: depth tested but not written, so the
         ground and solid things still hide what is behind them."""
         ctx = self.ctx
-        w, h = self.size
+        h = self.size[1]
         if n_trails:
             ctx.blend_func = moderngl.SRC_ALPHA, moderngl.ONE
-            self.programs["lines"]["u_caps"].value = 0.0
+            self._uniforms.set(self.programs["lines"], "u_caps", 0.0)
             self._glow_trails.vaos["lines"].render(moderngl.TRIANGLE_STRIP, vertices=4,
                                                    instances=n_trails)
-            self.programs["lines"]["u_caps"].value = 1.0
         if n_spheres:
             ctx.blend_func = moderngl.ONE, moderngl.ONE
-            _set_glow_uniforms(self.programs["glow"], view, proj, w, h)
+            _set_glow_uniforms(self._uniforms, self.programs["glow"], h)
             self._spheres.vaos["glow"].render(moderngl.TRIANGLE_STRIP, vertices=4,
                                               instances=n_spheres)
         if particles:
             ctx.blend_func = moderngl.ONE, moderngl.ONE
-            _set_glow_uniforms(self.programs["glow_split"], view, proj, w, h)
-            self._particles.draw("glow")
+            _set_glow_uniforms(self._uniforms, self.programs["glow_split"], h)
+            self._particles.draw("glow", self._uniforms)
         ctx.blend_func = moderngl.DEFAULT_BLENDING
 
-    def _draw_backdrop(self, fbo: moderngl.Framebuffer, scene: FrameState, camera: OrbitCamera,
-                       vp: np.ndarray) -> None:
-        """Clear ``fbo`` and draw the ground grid and the sky gradient into it."""
+    def _clear(self, fbo: moderngl.Framebuffer, scene: FrameState) -> None:
+        """Bind ``fbo`` and clear it to the sky's top color and the far depth."""
+        fbo.use()
+        self.ctx.viewport = (0, 0, *self.size)
+        fbo.depth_mask = True
+        self.ctx.clear(*style.sky(scene.sky).top, 1.0, depth=1.0)
+
+    def _draw_backdrop(self, scene: FrameState, camera: OrbitCamera) -> None:
+        """Draw the ground grid and the sky gradient into the bound framebuffer: the sky only
+        where nothing was drawn yet (the far plane, depth test <=)."""
         ctx = self.ctx
         sky = style.sky(scene.sky)
-        fbo.use()
-        ctx.viewport = (0, 0, *self.size)
-        fbo.depth_mask = True
-        ctx.clear(*sky.top, 1.0, depth=1.0)
-        ctx.enable(moderngl.DEPTH_TEST)
-        ctx.disable(moderngl.BLEND | moderngl.CULL_FACE)
         if scene.show_ground:
-            self._draw_ground(scene, camera, vp, sky)
-        # The sky at the far plane: only pixels the ground left empty pass the depth test.
+            self._draw_ground(scene, camera, sky)
         ctx.depth_func = "<="
         bg = self.programs["background"]
-        bg["u_top"].value = sky.top
-        bg["u_bottom"].value = sky.horizon
+        self._uniforms.set(bg, "u_top", sky.top)
+        self._uniforms.set(bg, "u_bottom", sky.horizon)
         self._vaos["background"].render(moderngl.TRIANGLE_STRIP, vertices=3)
         ctx.depth_func = "<"
 
-    def _draw_ground(self, scene: FrameState, camera: OrbitCamera, vp: np.ndarray,
-                     sky: style.Sky) -> None:
+    def _draw_ground(self, scene: FrameState, camera: OrbitCamera, sky: style.Sky) -> None:
         g = self.programs["ground"]
+        u = self._uniforms
         t = camera.target
-        g["u_view_proj"].write(vp.tobytes())
-        g["u_center"].value = (float(t[0]), float(scene.ground_height), float(t[2]))
-        g["u_extent"].value = float(max(30.0, 8.0 * camera.distance))
+        u.set(g, "u_center", (float(t[0]), float(scene.ground_height), float(t[2])))
+        u.set(g, "u_extent", float(max(30.0, 8.0 * camera.distance)))
         # 1 m cells from 5 m to 50 m away, 10 cm closer, 10 m further.
-        g["u_spacing"].value = float(10.0 ** math.floor(math.log10(max(camera.distance, 1e-3)
-                                                                   / 5.0)))
-        g["u_base"].value = sky.ground_base
-        g["u_line"].value = sky.ground_line
-        g["u_fog"].value = sky.horizon
+        u.set(g, "u_spacing", float(10.0 ** math.floor(math.log10(max(camera.distance, 1e-3)
+                                                                  / 5.0))))
+        u.set(g, "u_base", sky.ground_base)
+        u.set(g, "u_line", sky.ground_line)
+        u.set(g, "u_fog", sky.horizon)
         self._vaos["ground"].render(moderngl.TRIANGLE_STRIP, vertices=4)
 
-    def _draw_meshes(self, scene: FrameState, vp: np.ndarray, light_world,
-                     translucent: bool) -> None:
-        light = tuple(float(x) for x in light_world)
+    def _draw_meshes(self, scene: FrameState, translucent: bool) -> None:
         if not translucent:
+            rows = None
             solid = [b for b in scene.boxes if not b.wireframe]
-            rows = geometry.box_instances(solid)
+            if solid:
+                rows = geometry.box_instances(solid)
             if scene.body_boxes is not None and len(scene.body_boxes):
-                rows = np.concatenate([rows, scene.body_boxes])
-            if len(rows):
+                rows = scene.body_boxes if rows is None else \
+                    np.concatenate([rows, scene.body_boxes])
+            if rows is not None and len(rows):
                 n = self._boxes.put(rows)
-                boxes = self.programs["mesh_instanced"]
-                boxes["u_view_proj"].write(vp.tobytes())
-                boxes["u_light"].value = light
                 self._boxes.vaos["boxes"].render(moderngl.TRIANGLES, instances=n)
+        if not scene.planes:
+            return
         mesh = self.programs["mesh"]
-        items = []
         for p in scene.planes:
             rgba = tuple(p.color) if len(p.color) == 4 else (*p.color, 1.0)
             if (rgba[3] < 1.0) == translucent:
-                items.append((self._vaos["plane"],
-                              geometry.plane_model(p.center, p.normal, p.half_size), rgba))
-        if not items:
-            return
-        mesh["u_view_proj"].write(vp.tobytes())
-        mesh["u_light"].value = light
-        for vao, model, rgba in items:
-            mesh["u_model"].write(geometry.gl_matrix(model))
-            mesh["u_color"].value = tuple(float(x) for x in rgba)
-            vao.render(moderngl.TRIANGLES)
+                model = geometry.plane_model(p.center, p.normal, p.half_size)
+                mesh["u_model"].write(geometry.gl_matrix(model))
+                mesh["u_color"].value = tuple(float(x) for x in rgba)
+                self._vaos["plane"].render(moderngl.TRIANGLES)
 
     # -- reading -------------------------------------------------------------------------------
     def read_rgb(self) -> np.ndarray:
@@ -484,6 +487,7 @@ class Renderer:
         self._release_targets()
         self._spheres.release()
         self._shadows.release()
+        self._frame_block.release()
         for part in (self._particles, self._casters, self._reader, self._links):
             if part is not None:
                 part.release()
@@ -501,12 +505,9 @@ class Renderer:
         self.fbo = self.color_texture = None
 
 
-def _set_glow_uniforms(program: moderngl.Program, view: np.ndarray, proj: np.ndarray,
-                       w: int, h: int) -> None:
-    """The glow's uniforms, the same for the sphere rows' program and the particle buffers'."""
-    program["u_view"].write(view.tobytes())
-    program["u_proj"].write(proj.tobytes())
-    program["u_viewport"].value = (float(w), float(h))
-    program["u_min_core"].value = style.GLOW_MIN_CORE * max(0.5, h / 720.0)
-    program["u_halo"].value = style.GLOW_HALO
-    program["u_halo_gain"].value = style.GLOW_HALO_GAIN
+def _set_glow_uniforms(uniforms, program: moderngl.Program, h: int) -> None:
+    """The glow's own uniforms (the camera is the Frame block's), the same for the sphere
+    rows' program and the particle buffers'."""
+    uniforms.set(program, "u_min_core", style.GLOW_MIN_CORE * max(0.5, h / 720.0))
+    uniforms.set(program, "u_halo", style.GLOW_HALO)
+    uniforms.set(program, "u_halo_gain", style.GLOW_HALO_GAIN)

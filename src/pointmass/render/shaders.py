@@ -2,7 +2,8 @@
 
 Each file starts with ``#version 330 core`` and holds its stages in ``#if defined VERTEX_SHADER``
 / ``#elif defined FRAGMENT_SHADER`` blocks; the loader inserts the ``#define`` after the version
-line, as moderngl-window does.
+line, as moderngl-window does. A line ``#include <frame>`` becomes the camera and light's
+uniform block (``frame_block.FRAME_BLOCK``), shared by every program.
 """
 
 from __future__ import annotations
@@ -11,6 +12,8 @@ import importlib.resources
 from pathlib import Path
 
 import moderngl
+
+from .frame_block import FRAME_BLOCK
 
 STAGES = ("VERTEX_SHADER", "GEOMETRY_SHADER", "FRAGMENT_SHADER")
 
@@ -41,6 +44,7 @@ def stage_sources(text: str, defines: tuple[str, ...] = ()) -> dict[str, str]:
     if not first.startswith("#version"):
         raise ValueError("a shader file must start with its #version line")
     extra = "".join(f"#define {name}\n" for name in defines)
+    rest = rest.replace("#include <frame>\n", FRAME_BLOCK)
     return {stage: f"{first}\n#define {stage}\n{extra}{rest}" for stage in STAGES
             if f"defined {stage}" in rest}
 
