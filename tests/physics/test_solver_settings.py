@@ -21,7 +21,7 @@ def test_a_world_starts_with_the_default_settings_and_takes_new_ones():
     assert world.settings.max_velocity_passes == 3
     assert pm.World(settings=pm.SolverSettings(max_impact_passes=2)).settings.max_impact_passes \
         == 2
-    with pytest.raises(TypeError, match="settings must be a pm.SolverSettings"):
+    with pytest.raises(TypeError, match=r"settings must be a pm\.SolverSettings"):
         world.settings = {"max_velocity_passes": 3}  # type: ignore[assignment]
 
 
