@@ -98,6 +98,15 @@ FRICTION_IN_SOLVE = False
 SOLVE_PASSES = 30
 RELAX_PASSES = 30
 TOLERANCE = 1e-5
+#: Over-relaxation of the soft solve's normal rows (projected SOR; Erleben's PSOR): each row
+#: moves OVER × its Gauss–Seidel step. The soft rows' matrix K + γ is positive definite, so
+#: PSOR converges for 0 < OVER < 2, and a stack's slow vertical mode, which plain Gauss–Seidel
+#: takes O(N²) passes to settle, takes far fewer. Measured, sleep off, passes a step (solve and
+#: relax, 4 substeps) over t = 3–4 s, with 1.0 / 1.3 / 1.5 / 1.8: the 10-box tower 83 / 59 /
+#: 48 / 77, the 210-box pyramid 190 / 155 / 54 / 87 (apex 0.61 / 0.65 / 0.79 / 2.5 mm). The
+#: relax rows are hard (K alone, singular for a face's 4 coplanar points) and keep plain
+#: Gauss–Seidel: over-relaxed too, a face-down box bounced 6 % too high (0.266·h).
+OVER = 1.5
 #: Joint passes per substep at most, beside the contact pass; they stop once no joint changes
 #: a velocity by more than ``JOINT_TOLERANCE`` [m/s or rad/s].
 MAX_JOINT_PASSES = 30
@@ -250,6 +259,7 @@ def soft_pass(start, ca, cb, n, t1, t2, fmu, radius, mass_n, mass_t1, mass_t2, m
         wb = inv_mass[b] if b >= 0 else 0.0
         nx, ny, nz = n[s0, 0], n[s0, 1], n[s0, 2]
         par = soft if b >= 0 else static
+        over = OVER if use_bias else 1.0
         total = 0.0
         for c in range(s0, s1):
             if mass_n[c] == 0.0:
@@ -271,7 +281,8 @@ def soft_pass(start, ca, cb, n, t1, t2, fmu, radius, mass_n, mass_t1, mass_t2, m
                 keep = par[2]
             else:
                 bias = 0.0
-            new = max(impulse[c] - mass_n[c] * (scale * vs + bias) - keep * impulse[c], 0.0)
+            new = max(impulse[c] - over * (mass_n[c] * (scale * vs + bias) + keep * impulse[c]),
+                      0.0)
             d = new - impulse[c]
             impulse[c] = new
             total += new
