@@ -102,10 +102,11 @@ TOLERANCE = 1e-5
 #: moves OVER × its Gauss–Seidel step. The soft rows' matrix K + γ is positive definite, so
 #: PSOR converges for 0 < OVER < 2, and a stack's slow vertical mode, which plain Gauss–Seidel
 #: takes O(N²) passes to settle, takes far fewer. Measured, sleep off, passes a step (solve and
-#: relax, 4 substeps) over t = 3–4 s, with 1.0 / 1.3 / 1.5 / 1.8: the 10-box tower 83 / 59 /
-#: 48 / 77, the 210-box pyramid 190 / 155 / 54 / 87 (apex 0.61 / 0.65 / 0.79 / 2.5 mm). The
-#: relax rows are hard (K alone, singular for a face's 4 coplanar points) and keep plain
-#: Gauss–Seidel: over-relaxed too, a face-down box bounced 6 % too high (0.266·h).
+#: relax, 4 substeps) over t = 3–4 s with solve and relax both over-relaxed by 1.0 / 1.3 / 1.5 /
+#: 1.8: the 10-box tower 83 / 59 / 48 / 77, the 210-box pyramid 190 / 155 / 54 / 87 (apex 0.61
+#: / 0.65 / 0.79 / 2.5 mm). The relax rows are hard (K alone, singular for a face's 4 coplanar
+#: points) and keep plain Gauss–Seidel: over-relaxed too, a face-down box bounced 6 % too high
+#: (0.266·h). The solve alone at 1.5 (this): tower 32, pyramid 40 passes (apex 0.59 mm).
 OVER = 1.5
 #: Joint passes per substep at most, beside the contact pass; they stop once no joint changes
 #: a velocity by more than ``JOINT_TOLERANCE`` [m/s or rad/s].
