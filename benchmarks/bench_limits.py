@@ -162,9 +162,9 @@ def tiny_worlds() -> dict:
         world.add_particle((0, 0.1, 0), radius=0.1)
         return world
 
-    def resting_sphere(sleep):
+    def resting_sphere(sleep, body_step="impulses"):
         def build():
-            world = pm.World(sleep=sleep)
+            world = pm.World(sleep=sleep, body_step=body_step)
             world.add(pm.Ground())
             world.add_body(Sphere(0.5), (0, 0.5, 0), mass=1.0)
             return world
@@ -173,7 +173,9 @@ def tiny_worlds() -> dict:
     return {"1-particle world": particle,
             "1 particle (r 0.1) on the ground": resting_particle,
             "1 sphere body on the ground": resting_sphere(True),
-            "1 sphere body on the ground, sleep off": resting_sphere(False)}
+            "1 sphere body on the ground, sleep off": resting_sphere(False),
+            "1 sphere body on the ground, soft step": resting_sphere(True, "soft"),
+            "  the same, sleep off": resting_sphere(False, "soft")}
 
 
 def bench_tiny(steps: int, repeats: int, build=None) -> float:

@@ -30,12 +30,14 @@ beyond the floor or a wall, and the escapes (centre below the floor or outside t
 
 Engine settings: pointmass, ``World()`` defaults (islands sleep; "pointmass, sleep off" is
 ``World(sleep=False)``, the baseline for what sleeping buys, with the awake count and the time
-everything was asleep printed under the table); PyBullet, DIRECT mode, defaults (50 solver
-iterations, no substeps), maximal coordinates, damping zeroed (the others have none), friction
-√0.5 per shape (Bullet multiplies the two), restitution 0; MuJoCo 4, free-joint boxes,
-condim 3, friction 0.5 on every geom (MuJoCo takes the larger), pyramidal cones, default soft
-contacts and 100 iterations, with the Newton solver (its default) and with CG; z up in MuJoCo,
-converted back here.
+everything was asleep printed under the table; "pointmass soft" and "pointmass soft, sleep off"
+are the same with ``World(body_step="soft")``, issue 26's soft step: e.g. ``--engines
+pointmass-nosleep pointmass-soft-nosleep mujoco`` for its point 10); PyBullet, DIRECT mode,
+defaults (50 solver iterations, no substeps), maximal coordinates, damping zeroed (the others
+have none), friction √0.5 per shape (Bullet multiplies the two), restitution 0; MuJoCo 4,
+free-joint boxes, condim 3, friction 0.5 on every geom (MuJoCo takes the larger), pyramidal
+cones, default soft contacts and 100 iterations, with the Newton solver (its default) and with
+CG; z up in MuJoCo, converted back here.
 """
 
 from __future__ import annotations
@@ -117,8 +119,8 @@ def _stepper(step, steps: int, budget: float) -> tuple[float, int]:
     return time.perf_counter() - start, done
 
 
-def build_pointmass(scene: Scene, sleep: bool = True) -> pm.World:
-    world = pm.World(gravity=(0.0, -G, 0.0), sleep=sleep)
+def build_pointmass(scene: Scene, sleep: bool = True, body_step: str = "impulses") -> pm.World:
+    world = pm.World(gravity=(0.0, -G, 0.0), sleep=sleep, body_step=body_step)
     world.add(pm.Ground(restitution=0.0, friction=MU))
     if scene.pit is not None:
         for normal in ((1, 0, 0), (-1, 0, 0), (0, 0, 1), (0, 0, -1)):
@@ -133,8 +135,9 @@ def build_pointmass(scene: Scene, sleep: bool = True) -> pm.World:
 SLEEP_NOTES: list[tuple[str, str]] = []
 
 
-def run_pointmass(scene: Scene, steps: int, budget: float, sleep: bool = True):
-    world = build_pointmass(scene, sleep)
+def run_pointmass(scene: Scene, steps: int, budget: float, sleep: bool = True,
+                  body_step: str = "impulses"):
+    world = build_pointmass(scene, sleep, body_step)
     asleep_since = [None]  # the time the last body fell asleep, if all still sleep
 
     def step():
@@ -144,7 +147,8 @@ def run_pointmass(scene: Scene, steps: int, budget: float, sleep: bool = True):
     seconds, done = _stepper(step, steps, budget)
     b = world.bodies
     since = "never all" if asleep_since[0] is None else f"all from t = {asleep_since[0]:.2f} s"
-    SLEEP_NOTES.append((f"pointmass{'' if sleep else ', sleep off'}",
+    soft = " soft" if body_step == "soft" else ""
+    SLEEP_NOTES.append((f"pointmass{soft}{'' if sleep else ', sleep off'}",
                         f"{int(b.awake.sum())}/{b.count} awake at the end; asleep: {since}"))
     return seconds, done, b.position.copy(), b.orientation.copy(), b.velocity.copy()
 
@@ -153,9 +157,10 @@ def warm_pointmass() -> None:
     """Compile every kernel the scenes use (box–box faces and edges, planes) outside timing."""
     scene = pit(16)
     scene.position = scene.position[:16]
-    world = build_pointmass(scene)
-    for _ in range(90):
-        world.step(DT)
+    for body_step in ("impulses", "soft"):
+        world = build_pointmass(scene, body_step=body_step)
+        for _ in range(90):
+            world.step(DT)
 
 
 def run_pybullet(scene: Scene, steps: int, budget: float):
@@ -236,11 +241,17 @@ ENGINES = {
     "pointmass": run_pointmass,
     "pointmass, sleep off": lambda scene, steps, budget: run_pointmass(scene, steps, budget,
                                                                        sleep=False),
+    "pointmass soft": lambda scene, steps, budget: run_pointmass(scene, steps, budget,
+                                                                 body_step="soft"),
+    "pointmass soft, sleep off": lambda scene, steps, budget: run_pointmass(
+        scene, steps, budget, sleep=False, body_step="soft"),
     "PyBullet (50 it)": run_pybullet,
     "MuJoCo Newton": run_mujoco,
     "MuJoCo CG": lambda scene, steps, budget: run_mujoco(scene, steps, budget, "CG"),
 }
 ALIASES = {"pointmass": "pointmass", "pointmass-nosleep": "pointmass, sleep off",
+           "pointmass-soft": "pointmass soft",
+           "pointmass-soft-nosleep": "pointmass soft, sleep off",
            "pybullet": "PyBullet (50 it)",
            "mujoco": "MuJoCo Newton", "mujoco-cg": "MuJoCo CG"}
 
@@ -301,7 +312,7 @@ def measure(scene: Scene, pos: np.ndarray, quat: np.ndarray, vel: np.ndarray) ->
 
 # --- table ------------------------------------------------------------------------------------
 
-HEADER = ("| engine | steps | body-steps/s | × pointmass | ms/step | stands / at rest | "
+HEADER = ("| engine | steps | body-steps/s | × 1st pointmass | ms/step | stands / at rest | "
           "top drift xy [m] | top dz [m] | max / mean \\|v\\| [m/s] | max pen box / floor [m] | "
           "escapes |")
 
@@ -352,8 +363,9 @@ def main() -> None:
                         choices=["tower", "pyramid", "pit"])
     parser.add_argument("--engines", nargs="+", default=list(ALIASES),
                         choices=list(ALIASES), help="pointmass, pointmass-nosleep (World("
-                        "sleep=False), the baseline of sleeping), pybullet, mujoco (Newton), "
-                        "mujoco-cg")
+                        "sleep=False), the baseline of sleeping), pointmass-soft and "
+                        "pointmass-soft-nosleep (the same with World(body_step=\"soft\")), "
+                        "pybullet, mujoco (Newton), mujoco-cg")
     parser.add_argument("--repeats", type=int, default=1)
     parser.add_argument("--budget", type=float, default=300.0,
                         help="wall-clock cap [s] on one run's timed stepping")
@@ -373,7 +385,7 @@ def main() -> None:
         for scene_name in args.scenes:
             profile_pointmass(builders[scene_name](), steps)
         return
-    if "pointmass" in args.engines:
+    if any(alias.startswith("pointmass") for alias in args.engines):
         warm_pointmass()
     for scene_name in args.scenes:
         scene = builders[scene_name]()
@@ -391,7 +403,7 @@ def main() -> None:
                 print(f"| {name} | skipped ({exc.name} not installed) |")
                 continue
             rate = statistics.median(n * r[1] / r[0] for r in runs)
-            base = rate if name == "pointmass" else base
+            base = rate if base is None and name.startswith("pointmass") else base
             last = runs[-1]
             m = measure(scene, last[2], last[3], last[4])
             print(row(name, last[1] + 1, last[1] == steps - 1, rate, base, n, m), flush=True)
