@@ -11,6 +11,8 @@ import pytest
 
 import pointmass as pm
 from pointmass.rigid.shapes import Box, Sphere
+from pointmass.rigid.step import MAX_ROTATION
+from pointmass.solver import body_soft
 
 DT = 1 / 60
 
@@ -32,19 +34,35 @@ def test_r1_a_free_spinning_body_keeps_its_angular_momentum_and_precesses():
     assert not np.allclose(body.angular_velocity, (1.0, 4.0, 0.5))   # ω itself precesses
 
 
-def test_r2_rotation_per_step_is_bounded_and_inertia_follows_the_pose():
+@pytest.mark.parametrize(("stage", "kicks"), [("impulses", 1), ("soft", body_soft.SUBSTEPS)])
+def test_r2_rotation_per_step_is_bounded_and_inertia_follows_the_pose(stage, kicks):
     """R2: Cyclone uses last step's world inertia and lets ω·dt grow without bound. A huge
-    torque here turns a box at most a quarter turn per step, and the world inverse inertia is
+    torque here is capped where it is integrated: the first kick's spin is MAX_ROTATION / h
+    along I⁻¹τ, h the body stage's integration step (dt for "impulses", dt/SUBSTEPS for
+    "soft"). The torque-free drifts after it keep the rotational energy and later kicks only
+    slow a spin, so the energy after the step is at most that capped spin's (equal with one
+    kick and one drift); the box turns at most π/4 per drift (one with "impulses"; with
+    "soft" four, whose sum the orientation alone cannot show). The world inverse inertia is
     that of the current orientation after the step."""
     from pointmass.rigid.bodies import world_rotation
 
-    world = _free_world()
+    world = pm.World(gravity=(0.0, 0.0, 0.0), body_step=stage)
     body = world.add_body(Box((0.2, 0.4, 0.8)), mass=1.0)
-    body.add_torque((3e5, 1e6, 0.0))
+    torque = np.array((3e5, 1e6, 0.0))
+    body.add_torque(torque)
     world.step(DT)
-    turned = 2.0 * math.acos(min(1.0, abs(float(body.orientation[0]))))   # from the identity
-    assert turned <= math.pi / 4 + 1e-9
     b = world.bodies
+    h = DT / kicks
+    spin = b.inv_inertia[0] * torque  # the identity pose: I⁻¹ is diagonal
+    capped = MAX_ROTATION / h * spin / np.linalg.norm(spin)
+    cap_energy = 0.5 * capped @ (capped / b.inv_inertia[0])
+    w = b.angular_velocity[0]
+    energy = 0.5 * w @ np.linalg.solve(b.inv_inertia_world[0], w)
+    assert energy <= cap_energy * (1.0 + 1e-9)
+    if kicks == 1:
+        assert energy == pytest.approx(cap_energy, rel=1e-9)
+        turned = 2.0 * math.acos(min(1.0, abs(float(body.orientation[0]))))
+        assert turned <= MAX_ROTATION + 1e-9
     r = world_rotation(b.orientation[0])
     expected = r @ np.diag(b.inv_inertia[0]) @ r.T
     assert np.allclose(b.inv_inertia_world[0], expected, atol=1e-12)
