@@ -66,6 +66,7 @@ from numba import njit
 from ..impulse_history import ImpulseHistory
 from ..rigid.contacts import BodyContacts
 from ..rigid.scalar import qrot, qrot_inv
+from ..rigid.shapes import SPHERE
 from ..rigid.step import integrate_positions, integrate_velocities
 from . import body_manifolds as bm
 from . import body_passes as bp
@@ -178,7 +179,8 @@ def _normal_velocity(vel, ang, i, rx, ry, rz, nx, ny, nz):
 
 @njit(cache=True, nogil=True)
 def refresh(start, ca, cb, n, la, lb, r0a, r0b, depth0, mu, inv_mass, inv_i, pos, quat, ra, rb,
-            sep, mass_n, t1, t2, fa, fb, mass_t1, mass_t2, mass_tw, radius, fmu, arm, farm):
+            sep, mass_n, t1, t2, fa, fb, mass_t1, mass_t2, mass_tw, radius, fmu, arm, farm,
+            round_a, round_b):
     """The rows at the bodies' current pose (module docstring): each point's separation from
     its two body-fixed anchors; its arms to one point of application, the midpoint of the
     collision's arms r0a, r0b carried along by the two centres (Box2D's anchors, which do not
@@ -188,12 +190,21 @@ def refresh(start, ca, cb, n, la, lb, r0a, r0b, depth0, mu, inv_mass, inv_i, pos
     for c in range(ca.shape[0]):
         a = ca[c]
         b = cb[c]
+        # a sphere's nearest point along n is its centre's arm of the collision, whatever
+        # its spin: an anchor turning with a ball that rolls at π/4 a substep (a ball shot
+        # along a wall) left the wall and let the ball through it
         q = quat[a]
-        ax, ay, az = qrot(q[0], q[1], q[2], q[3], la[c, 0], la[c, 1], la[c, 2])
+        if round_a[c]:
+            ax, ay, az = r0a[c, 0], r0a[c, 1], r0a[c, 2]
+        else:
+            ax, ay, az = qrot(q[0], q[1], q[2], q[3], la[c, 0], la[c, 1], la[c, 2])
         px, py, pz = pos[a, 0] + ax, pos[a, 1] + ay, pos[a, 2] + az
         if b >= 0:
             q = quat[b]
-            bx, by, bz = qrot(q[0], q[1], q[2], q[3], lb[c, 0], lb[c, 1], lb[c, 2])
+            if round_b[c]:
+                bx, by, bz = r0b[c, 0], r0b[c, 1], r0b[c, 2]
+            else:
+                bx, by, bz = qrot(q[0], q[1], q[2], q[3], lb[c, 0], lb[c, 1], lb[c, 2])
             ux, uy, uz = pos[b, 0] + bx, pos[b, 1] + by, pos[b, 2] + bz
         else:
             ux, uy, uz = lb[c, 0], lb[c, 1], lb[c, 2]
@@ -205,10 +216,18 @@ def refresh(start, ca, cb, n, la, lb, r0a, r0b, depth0, mu, inv_mass, inv_i, pos
         mx = pos[a, 0] + r0a[c, 0]
         my = pos[a, 1] + r0a[c, 1]
         mz = pos[a, 2] + r0a[c, 2]
-        if b >= 0:  # both bodies are pushed at one point: the midpoint of their arms' ends
-            mx = 0.5 * (mx + pos[b, 0] + r0b[c, 0])
-            my = 0.5 * (my + pos[b, 1] + r0b[c, 1])
-            mz = 0.5 * (mz + pos[b, 2] + r0b[c, 2])
+        if b >= 0:
+            # both bodies are pushed at one point between their arms' ends, weighted by
+            # inverse mass: the midpoint for equal masses, body A's own point against an
+            # immovable body, as against scenery (with the midpoint, a swept contact's point
+            # carried back to the step's start stayed behind on the wall while a ball slid
+            # along it: its push spun the ball, 156 rad/s without friction, and the ball went
+            # through the 5 cm wall, tests/physics/rigid/test_thin_wall.py)
+            w = inv_mass[a] + inv_mass[b]
+            f = inv_mass[a] / w if w > 0.0 else 0.5
+            mx = f * mx + (1.0 - f) * (pos[b, 0] + r0b[c, 0])
+            my = f * my + (1.0 - f) * (pos[b, 1] + r0b[c, 1])
+            mz = f * mz + (1.0 - f) * (pos[b, 2] + r0b[c, 2])
             rb[c, 0], rb[c, 1], rb[c, 2] = mx - pos[b, 0], my - pos[b, 1], mz - pos[b, 2]
         else:
             rb[c, 0], rb[c, 1], rb[c, 2] = mx, my, mz
@@ -473,6 +492,8 @@ class _Rows:
             np.empty(k) for _ in range(5))
         self.jt1, self.jt2, self.jtw = (np.zeros(k) for _ in range(3))
         self.farm = np.empty((k, 30))
+        #: per point: whether body A, B is a sphere (``refresh``: its anchor does not turn)
+        self.round_a, self.round_b = np.zeros(m, np.bool_), np.zeros(m, np.bool_)
 
 
 def _refresh(b, c: BodyContacts, r: _Rows) -> float:
@@ -480,7 +501,7 @@ def _refresh(b, c: BodyContacts, r: _Rows) -> float:
                          c.friction,
                          b.inv_mass, b.inv_inertia_world, b.position, b.orientation, r.ra, r.rb,
                          r.sep, r.mass_n, r.t1, r.t2, r.fa, r.fb, r.mass_t1, r.mass_t2,
-                         r.mass_tw, r.radius, r.fmu, r.arm, r.farm))
+                         r.mass_tw, r.radius, r.fmu, r.arm, r.farm, r.round_a, r.round_b))
 
 
 def _pass(b, c: BodyContacts, r: _Rows, inv_h: float, use_bias: bool, soft, static,
@@ -630,6 +651,10 @@ def step(view, bodies, contacts: BodyContacts, acceleration: np.ndarray,
     r = _Rows(c)
     awake = v.awake
     if c.count:
+        spheres = np.zeros(v.position.shape[0], np.bool_)  # particle rows: no spin anyway
+        spheres[:nb] = b.shape[:nb] == SPHERE
+        r.round_a[:] = spheres[c.a]
+        r.round_b[:] = (c.b >= 0) & spheres[np.maximum(c.b, 0)]
         anchor(c.a, c.b, c.normal, c.r_a, c.r_b, v.orientation, v.inv_mass,
                v.inv_inertia_world, v.velocity, v.angular_velocity, acceleration, r.la, r.lb,
                r.along, r.approach, r.relv)

@@ -71,8 +71,17 @@ def test_centred_body_spring_oscillates_at_the_two_body_frequency():
     assert period == pytest.approx(expected, rel=0.01)
 
 
-def test_anchored_spring_hangs_a_body_at_its_stretch():
-    world = pm.World(gravity=(0.0, -9.81, 0.0))
+_SAWTOOTH = pytest.mark.xfail(strict=True, reason=(
+    "the soft step applies a force generator's impulse once a step, in its first substep, and "
+    "gravity in each of its 4 substeps: a body the force holds up ends each step at "
+    "v = -(4 - 1)/2·g·h (-0.031 m/s at dt 1/120), so the spring's damper (c = 5) reads that "
+    "and holds the body up by c·1.5·g·h/k: 1.6106 m against 1.6076 m (measured)"))
+
+
+@pytest.mark.parametrize("stage", ["impulses", pytest.param("soft", marks=_SAWTOOTH)])
+def test_anchored_spring_hangs_a_body_at_its_stretch(stage):
+    """At rest a damped spring holds m·g at the stretch m·g/k, whatever its damping."""
+    world = pm.World(gravity=(0.0, -9.81, 0.0), body_step=stage)
     body = world.add_body(Sphere(0.2), (0.0, 1.0, 0.0), mass=2.0, linear_damping=0.05)
     world.add(AnchoredBodySpring(body, (0, 0, 0), (0.0, 3.0, 0.0), k=50.0, rest=1.0,
                                  damping=5.0))
@@ -157,6 +166,11 @@ def test_explosion_pushes_outward_with_falloff_and_stops():
 
 @pytest.mark.parametrize("density", [300.0, 700.0])
 def test_buoyancy_floats_a_box_where_weight_equals_displaced_water(density):
+    """The box settles where its weight equals the water it displaces, and stops there: its
+    motion over a step, Δy/dt, is read rather than the velocity at the step's end. (With the
+    soft step, ``World(body_step="soft")``, the buoyancy's impulse comes once a step, in the
+    first of 4 substeps, and gravity in each: a floating box at rest ends each step at
+    v = −(4 − 1)/2·g·h = −0.0307 m/s at dt 1/120, measured −0.0306, its position unmoved.)"""
     half = 0.5
     world = pm.World(gravity=(0.0, -9.81, 0.0))
     box = world.add_body(Box((half, half, half)), (0.0, 1.0, 0.0), density=density,
@@ -168,7 +182,9 @@ def test_buoyancy_floats_a_box_where_weight_equals_displaced_water(density):
     submerged = half - box.position[1]  # depth of the bottom face below the water
     displaced = submerged * (2 * half) ** 2 * 1000.0
     assert displaced == pytest.approx(box.mass, rel=0.01)
-    assert abs(box.velocity[1]) < 1e-3
+    before = box.position[1]
+    world.step(1 / 120)
+    assert abs(box.position[1] - before) * 120 < 1e-3
 
 
 def test_generators_add_to_user_forces_for_each_substep_only():

@@ -12,10 +12,11 @@ with ``World()`` defaults plus the scene's own materials; dt = 1/60, g = 9.81.
 * point 8: boxes colliding without gravity (e 0 and 0.5, μ 0 and 0.5): linear and angular
   momentum about the origin.
 
-Each scene runs with ``World()`` defaults (the "impulses" stage; a target it misses is an
-``xfail(strict=True)`` with the measured value) and with the soft step,
-``World(body_step="soft")`` (``solver/body_soft.py``), which is not the default yet; a
-target the soft step misses is a ratchet at its measured value with the issue's target named.
+Each scene runs with both body stages, each named: the earlier sequential-impulse stage,
+``World(body_step="impulses")`` (a target it misses is an ``xfail(strict=True)`` with the
+measured value), and the soft step, ``World(body_step="soft")`` (``solver/body_soft.py``; a
+target it misses is a ratchet at its measured value with the issue's target named). The tests
+name the stage rather than lean on ``World()``'s default, so they hold whichever is the default.
 """
 
 from __future__ import annotations
@@ -39,6 +40,8 @@ G = 9.81
 DT = 1.0 / 60.0
 MU = 0.5
 SOFT = {"body_step": "soft"}
+#: The earlier stage, named: these tests hold its figures whichever stage ``World()`` runs.
+IMPULSES = {"body_step": "impulses"}
 
 
 # --- point 1: towers ---------------------------------------------------------------------------
@@ -63,7 +66,7 @@ _FALLS = pytest.mark.xfail(strict=True, reason="issue 26 point 1: the default st
                                pytest.param(30, marks=_FALLS)])
 def test_tower_stands_60_s_with_sleep_off(n):
     # measured: 5 and 10 boxes 2e-10 / 7e-10 m sideways, 3e-10 / 1e-9 m down
-    drift, sink = tower(n)
+    drift, sink = tower(n, **IMPULSES)
     assert drift < 0.01
     assert abs(sink) < 0.01
 
@@ -137,7 +140,7 @@ def pit(n: int = 1000, seconds: float = 10.0, seed: int = 0,
 @pytest.mark.xfail(strict=True, reason="issue 26 point 2: the default stage's apex drifts 8.0 mm "
                    "in 10 s (max speed 0.39 mm/s meets its bound)")
 def test_pyramid_stands_still_with_sleep_off():
-    drift, speed = pyramid()
+    drift, speed = pyramid(**IMPULSES)
     assert drift < 0.005
     assert speed < 0.01
 
@@ -154,7 +157,7 @@ def test_soft_step_pyramid_stands_still_with_sleep_off():
 @pytest.mark.xfail(strict=True, reason="issue 26 point 2: the default stage's pit still moves "
                    "at 10 s: max speed 0.090 m/s (overlap 0.29 mm meets its bound)")
 def test_box_pit_comes_to_rest_with_sleep_off():
-    speed, overlap = pit()
+    speed, overlap = pit(**IMPULSES)
     assert speed < 0.05
     assert overlap < 0.005
 
@@ -201,7 +204,7 @@ def drop(shape: str, height: float, e: float = 0.5, **world) -> float:
 @pytest.mark.parametrize("shape", ["box", "sphere"])
 @pytest.mark.parametrize("height", [0.9, 0.95, 1.0, 1.05, 1.1])
 def test_drop_rebounds_to_e_squared_of_its_height(shape, height):
-    assert drop(shape, height) == pytest.approx(0.25, rel=0.03)
+    assert drop(shape, height, **IMPULSES) == pytest.approx(0.25, rel=0.03)
 
 
 @pytest.mark.parametrize("shape", ["box", "sphere"])
@@ -258,7 +261,7 @@ _PROJECTED = pytest.mark.xfail(strict=True, reason="issue 26 point 8: the defaul
                                        (0.5, 0.0), (0.5, 0.5)])
 def test_zero_gravity_collision_keeps_momentum(e, mu):
     # measured: linear ≤ 9e-16; angular 1.7e-14, 1.3e-14, 9.9e-15
-    linear, angular = collide(e, mu)
+    linear, angular = collide(e, mu, **IMPULSES)
     assert linear < 1e-9
     assert angular < 1e-9
 
