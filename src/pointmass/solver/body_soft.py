@@ -517,7 +517,7 @@ def _pass(b, c: BodyContacts, r: _Rows, inv_h: float, use_bias: bool, soft, stat
 @njit(cache=True, nogil=True)
 def contact_step(nb, substeps, h, gravity, soft, static, threshold, pos, quat, vel, ang,
                  inv_mass, inv_inertia, inv_i, awake, lin_d, ang_d, acc, ca, cb, n, r0a, r0b,
-                 depth0, mu, e, impulse, kept):
+                 depth0, mu, e, impulse, kept, round_a, round_b):
     """The whole soft step of a world without joints in one compiled call (issue 26: a small
     world pays no Python per substep; measured, the 10-box tower's stage made 38 kernel calls
     a step from Python). ``impulse`` (M,) and ``kept`` (M, 3) come in with the recalled warm
@@ -561,7 +561,7 @@ def contact_step(nb, substeps, h, gravity, soft, static, threshold, pos, quat, v
                approach, relv)
         refresh(start, ca, cb, n, la, lb, r0a, r0b, depth0, mu, inv_mass, inv_i, pos, quat, ra,
                 rb, sep, mass_n, t1, t2, fa, fb, mass_t1, mass_t2, mass_tw, radius, fmu, arm,
-                farm)
+                farm, round_a, round_b)
         bm.gather_friction(start, n, t1, t2, fmu, radius, mass_tw, kept, jt1, jt2, jtw)
     inv_h = 1.0 / h
     still = np.zeros((nb, 3))  # no forces or torques in the later kicks
@@ -586,7 +586,7 @@ def contact_step(nb, substeps, h, gravity, soft, static, threshold, pos, quat, v
         if m:
             deepest = refresh(start, ca, cb, n, la, lb, r0a, r0b, depth0, mu, inv_mass, inv_i,
                               pos, quat, ra, rb, sep, mass_n, t1, t2, fa, fb, mass_t1, mass_t2,
-                              mass_tw, radius, fmu, arm, farm)
+                              mass_tw, radius, fmu, arm, farm, round_a, round_b)
             passes += soft_passes(start, ca, cb, n, t1, t2, fmu, radius, mass_n, mass_t1,
                                   mass_t2, mass_tw, sep, inv_mass, vel, ang, impulse, peak,
                                   relv, gap, jt1, jt2, jtw, arm, farm, inv_h, False, True,
@@ -598,6 +598,14 @@ def contact_step(nb, substeps, h, gravity, soft, static, threshold, pos, quat, v
     return passes, deepest, 0, -1
 
 
+def _round(v, b, c: BodyContacts) -> tuple[np.ndarray, np.ndarray]:
+    """Per point: whether its body A, B is a sphere (``refresh``: a sphere's anchor does not
+    turn with it); particle rows (index ≥ the bodies') do not spin anyway."""
+    spheres = np.zeros(v.position.shape[0], np.bool_)
+    spheres[:b.count] = b.shape[:b.count] == SPHERE
+    return spheres[c.a], (c.b >= 0) & spheres[np.maximum(c.b, 0)]
+
+
 def _contact_step(v, b, c: BodyContacts, acceleration, history: ImpulseHistory, h: float,
                   threshold: float, gravity, substeps: int, soft, static, out: SoftRows):
     """``step`` without joints: recall, ``contact_step``, keep."""
@@ -607,11 +615,12 @@ def _contact_step(v, b, c: BodyContacts, acceleration, history: ImpulseHistory, 
         history.recall(c.key, impulse, kept)
     else:
         history.clear()
+    round_a, round_b = _round(v, b, c)
     passes, deepest, error, bad = contact_step(
         b.count, substeps, h, gravity, soft, static, threshold, v.position, v.orientation,
         v.velocity, v.angular_velocity, v.inv_mass, v.inv_inertia, v.inv_inertia_world,
         v.awake, b.linear_damping, b.angular_damping, acceleration, c.a, c.b, c.normal, c.r_a,
-        c.r_b, c.depth, c.friction, c.restitution, impulse, kept)
+        c.r_b, c.depth, c.friction, c.restitution, impulse, kept, round_a, round_b)
     if error == 1:
         from ..rigid.step import spin_error
         raise spin_error(b, int(bad), h)
@@ -651,10 +660,7 @@ def step(view, bodies, contacts: BodyContacts, acceleration: np.ndarray,
     r = _Rows(c)
     awake = v.awake
     if c.count:
-        spheres = np.zeros(v.position.shape[0], np.bool_)  # particle rows: no spin anyway
-        spheres[:nb] = b.shape[:nb] == SPHERE
-        r.round_a[:] = spheres[c.a]
-        r.round_b[:] = (c.b >= 0) & spheres[np.maximum(c.b, 0)]
+        r.round_a[:], r.round_b[:] = _round(v, b, c)
         anchor(c.a, c.b, c.normal, c.r_a, c.r_b, v.orientation, v.inv_mass,
                v.inv_inertia_world, v.velocity, v.angular_velocity, acceleration, r.la, r.lb,
                r.along, r.approach, r.relv)
