@@ -512,6 +512,7 @@ def step(view, bodies, contacts: BodyContacts, acceleration: np.ndarray,
         _refresh(v, c, r)
         bm.gather_friction(r.start, c.normal, r.t1, r.t2, r.fmu, r.radius, r.mass_tw, kept,
                            r.jt1, r.jt2, r.jtw)
+        soft_energy.touching_warm_start(c.depth, r.impulse, r.jt1, r.jt2, r.jtw)
     else:
         history.clear()
     passes = 0
