@@ -62,11 +62,13 @@ def _quaternion(rng) -> tuple[float, ...]:
     return tuple((q / np.linalg.norm(q)).tolist())
 
 
-def build(seed: int) -> tuple[pm.World, bool]:
-    """The world of ``seed``, and whether it is force-free (no gravity)."""
+def build(seed: int, **world_args) -> tuple[pm.World, bool]:
+    """The world of ``seed`` (``World(**world_args)`` besides its gravity), and whether it is
+    force-free (no gravity)."""
     rng = np.random.default_rng(seed)
     force_free = bool(rng.random() < 0.5)
-    world = pm.World(gravity=(0.0, 0.0, 0.0) if force_free else (0.0, -9.81, 0.0))
+    world = pm.World(gravity=(0.0, 0.0, 0.0) if force_free else (0.0, -9.81, 0.0),
+                     **world_args)
     room = float(rng.uniform(3.0, 6.0))  # the walls' half size [m]
     scenery = int(rng.integers(0, 3))  # none, a ground, six walls
     if scenery == 1:
@@ -165,10 +167,12 @@ def speed(world: pm.World) -> float:
     return float(np.sqrt((v * v).sum(axis=1)).max()) if v.size else 0.0
 
 
-def run(seed: int, steps: int = STEPS, watchdog: float | None = None) -> Outcome:
-    """Run scene ``seed``; ``watchdog`` [s]: a step that has not returned by then dumps the
-    stacks and ends the process (a numba loop cannot be interrupted any other way)."""
-    world, force_free = build(seed)
+def run(seed: int, steps: int = STEPS, watchdog: float | None = None,
+        **world_args) -> Outcome:
+    """Run scene ``seed`` (``world_args``: as ``build``); ``watchdog`` [s]: a step that has not
+    returned by then dumps the stacks and ends the process (a numba loop cannot be interrupted
+    any other way)."""
+    world, force_free = build(seed, **world_args)
     out = Outcome(seed, force_free, len(world.joints))
     contacts = BodyContacts()
     energy = world.kinetic_energy()
@@ -244,13 +248,19 @@ def warm_up() -> None:
     project_late(world.bodies, [], None, BodyContacts(), DT, np.empty(0, np.int64))
 
 
-def _child(seeds: list[int], steps: int, hang: float) -> None:
-    """Run ``seeds`` in order, printing one line per scene (the parent reads them)."""
+def _child(seeds: list[int], steps: int, hang: float, body_step: str | None) -> None:
+    """Run ``seeds`` in order, printing one line per scene (the parent reads them); with
+    ``body_step``, only the scenes that stage can build (the soft step refuses joints)."""
     warm_up()
     print("warm", flush=True)
+    world_args = {} if body_step is None else {"body_step": body_step}
     for seed in seeds:
         print(f"start {seed}", flush=True)
-        o = run(seed, steps, watchdog=hang)
+        try:
+            o = run(seed, steps, watchdog=hang, **world_args)
+        except NotImplementedError:
+            print(f"skip {seed}", flush=True)
+            continue
         print(f"done {seed} {o.force_free:d} {o.joints} {o.steps} {o.explosion} {o.speed:.3g} "
               f"{o.gain} {o.gain_1e3} {o.worst_gain:.3g} {o.deep} {o.deepest:.3g} "
               f"{o.slowest:.3g} {o.refused is not None:d} {o.hang}", flush=True)
@@ -263,23 +273,33 @@ def main() -> None:
     parser.add_argument("--seeds", default="0:200", help="first:last (exclusive)")
     parser.add_argument("--steps", type=int, default=STEPS)
     parser.add_argument("--hang", type=float, default=5.0, help="a step this long [s] is a hang")
+    parser.add_argument("--body-step", default=None,
+                        help='World(body_step=...): "impulses" or "soft" (World()\'s if not given)')
+    parser.add_argument("--joint-free", action="store_true",
+                        help="only the scenes without joints (what the soft step can build)")
     parser.add_argument("--child", action="store_true", help=argparse.SUPPRESS)
     args = parser.parse_args()
     first, last = (int(s) for s in args.seeds.split(":"))
     seeds = list(range(first, last))
+    if args.joint_free:
+        seeds = [s for s in seeds if not len(build(s)[0].joints)]
     if args.child:
-        _child(seeds, args.steps, args.hang)
+        _child(seeds, args.steps, args.hang, args.body_step)
         return
     rows, hangs = [], []
     while seeds:
+        extra = [] if args.body_step is None else ["--body-step", args.body_step]
+        if args.joint_free:
+            extra.append("--joint-free")
         proc = subprocess.Popen([sys.executable, __file__, "--child", "--steps", str(args.steps),
                                  "--hang", str(args.hang), "--seeds",
-                                 f"{seeds[0]}:{seeds[-1] + 1}"],
+                                 f"{seeds[0]}:{seeds[-1] + 1}", *extra],
                                 stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
         started = None
         for line in proc.stdout:  # streamed, so a long run shows its progress
             parts = line.split()
-            if parts[0] == "warm":
+            if parts[0] in ("warm", "skip"):
+                started = None
                 continue
             if parts[0] == "start":
                 started = int(parts[1])

@@ -70,7 +70,7 @@ from ..rigid.shapes import SPHERE
 from ..rigid.step import integrate_positions, integrate_velocities
 from . import body_manifolds as bm
 from . import body_passes as bp
-from . import joint_solver
+from . import joint_solver, soft_energy
 from .body_stages import _arm_mass, world_inertia
 from .kernels import bounce_target
 
@@ -670,11 +670,17 @@ def step(view, bodies, contacts: BodyContacts, acceleration: np.ndarray,
         _refresh(v, c, r)
         bm.gather_friction(r.start, c.normal, r.t1, r.t2, r.fmu, r.radius, r.mass_tw, kept,
                            r.jt1, r.jt2, r.jtw)
+        soft_energy.touching_warm_start(c.depth, r.impulse, r.jt1, r.jt2, r.jtw)
     else:
         history.clear()
     passes = 0
     jr = None
     still = np.zeros((nb, 3))  # no forces or torques in the later kicks
+    # restitution returns at most what the contacts absorbed (``soft_energy``): counted where
+    # a point can bounce; with joints, their impulses are in the same velocities (their slice)
+    bouncy = c.count and not jointed and bool((c.restitution > 0.0).any())
+    budget = soft_energy.Budget() if bouncy else None
+
     for i in range(substeps):
         if i > 0:
             bad = kick(nb, v.velocity, v.angular_velocity, still, still, v.inv_mass,
@@ -683,6 +689,8 @@ def step(view, bodies, contacts: BodyContacts, acceleration: np.ndarray,
             if bad >= 0:
                 from ..rigid.step import spin_error
                 raise spin_error(b, int(bad), h)
+        if budget is not None:
+            budget.begin(v)
         if c.count:
             warm_start(r.start, c.a, c.b, c.normal, r.t1, r.t2, v.inv_mass, v.velocity,
                        v.angular_velocity, r.impulse, r.jt1, r.jt2, r.jtw, r.arm, r.farm)
@@ -707,14 +715,27 @@ def step(view, bodies, contacts: BodyContacts, acceleration: np.ndarray,
         if c.count:
             out.deepest = _refresh(v, c, r)
             passes += _pass(v, c, r, inv_h, False, soft, static, RELAX_PASSES)
+            if budget is not None:
+                budget.relaxed(v)
     out.velocity_passes = passes
     if c.count:
-        restitution(r.start, c.a, c.b, c.normal, c.restitution, r.along, r.approach, r.relv,
-                    r.gap, r.peak, r.mass_n, v.inv_mass, v.velocity, v.angular_velocity,
-                    r.impulse, r.arm, h, threshold, resting, RELAX_PASSES, TOLERANCE)
+        def bounce() -> None:
+            restitution(r.start, c.a, c.b, c.normal, c.restitution, r.along, r.approach,
+                        r.relv, r.gap, r.peak, r.mass_n, v.inv_mass, v.velocity,
+                        v.angular_velocity, r.impulse, r.arm, h, threshold, resting,
+                        RELAX_PASSES, TOLERANCE)
+
+        # the next step is warm started with what held the bodies, not with the bounce: a
+        # bounce's impulse warm started on a point that now separates is velocity the next
+        # solve must take back (it did not, fully: energy gained in force-free scenes)
+        held = r.impulse.copy()
+        if budget is not None:
+            budget.bounce(v, r.impulse, bounce)
+        else:
+            bounce()
         kept = np.empty((c.count, 3))
         bm.split_friction(r.start, c.normal, r.t1, r.t2, r.jt1, r.jt2, r.jtw, kept)
-        history.keep(c.key, r.impulse, kept)
+        history.keep(c.key, held, kept)
     if jr is not None:  # what the joints' rows left open, projected (their slice's method)
         for n in range(1, MAX_JOINT_PROJECTIONS + 1):
             out.position_passes = n
