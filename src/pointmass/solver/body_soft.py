@@ -64,6 +64,7 @@ import numpy as np
 from numba import njit
 
 from ..impulse_history import ImpulseHistory
+from ..rigid.bodies import _kinetic_energy
 from ..rigid.contacts import BodyContacts
 from ..rigid.scalar import qrot, qrot_inv
 from ..rigid.shapes import SPHERE
@@ -563,6 +564,16 @@ def contact_step(nb, substeps, h, gravity, soft, static, threshold, pos, quat, v
                 rb, sep, mass_n, t1, t2, fa, fb, mass_t1, mass_t2, mass_tw, radius, fmu, arm,
                 farm, round_a, round_b)
         bm.gather_friction(start, n, t1, t2, fmu, radius, mass_tw, kept, jt1, jt2, jtw)
+        soft_energy.touching_warm_start(depth0, impulse, jt1, jt2, jtw)
+    # restitution returns at most what the contacts absorbed (``soft_energy``), counted only
+    # where a point can bounce
+    bouncy = False
+    for c in range(m):
+        if e[c] > 0.0:
+            bouncy = True
+            break
+    absorbed = 0.0
+    begun = 0.0
     inv_h = 1.0 / h
     still = np.zeros((nb, 3))  # no forces or torques in the later kicks
     passes = 0
@@ -573,6 +584,8 @@ def contact_step(nb, substeps, h, gravity, soft, static, threshold, pos, quat, v
                        gravity, h, awake, acc)
             if bad >= 0:
                 return passes, deepest, 1, bad
+        if bouncy:
+            begun = _kinetic_energy(vel, ang, quat, inv_mass, inv_inertia)
         if m:
             warm_start(start, ca, cb, n, t1, t2, inv_mass, vel, ang, impulse, jt1, jt2, jtw,
                        arm, farm)
@@ -591,9 +604,22 @@ def contact_step(nb, substeps, h, gravity, soft, static, threshold, pos, quat, v
                                   mass_t2, mass_tw, sep, inv_mass, vel, ang, impulse, peak,
                                   relv, gap, jt1, jt2, jtw, arm, farm, inv_h, False, True,
                                   soft, static, RELAX_PASSES, TOLERANCE)
+            if bouncy:
+                absorbed += begun - _kinetic_energy(vel, ang, quat, inv_mass, inv_inertia)
     if m:
+        # the next step is warm started with what held the bodies, not with the bounce (as
+        # ``step``'s loop: a bounce warm started on a point that now separates gained energy)
+        held = impulse.copy()
+        if bouncy:
+            v0 = vel.copy()
+            w0 = ang.copy()
+            e0 = _kinetic_energy(vel, ang, quat, inv_mass, inv_inertia)
         restitution(start, ca, cb, n, e, along, approach, relv, gap, peak, mass_n, inv_mass,
                     vel, ang, impulse, arm, h, threshold, resting, RELAX_PASSES, TOLERANCE)
+        if bouncy:
+            soft_energy.limit_bounce(e0, absorbed, v0, w0, held, vel, ang, impulse, quat,
+                                     inv_mass, inv_inertia)
+        impulse[:] = held
         bm.split_friction(start, n, t1, t2, jt1, jt2, jtw, kept)
     return passes, deepest, 0, -1
 
@@ -637,12 +663,14 @@ def _contact_step(v, b, c: BodyContacts, acceleration, history: ImpulseHistory, 
 
 def step(view, bodies, contacts: BodyContacts, acceleration: np.ndarray,
          history: ImpulseHistory, dt: float, threshold: float, gravity: np.ndarray,
-         joints=None, substeps: int = SUBSTEPS) -> SoftRows:
+         joints=None, substeps: int = SUBSTEPS, compiled: bool = True) -> SoftRows:
     """The soft step over ``dt`` (module docstring) on ``view`` (the bodies, or the packed
     view of bodies and particles), whose first kick of dt/``substeps`` is already done, with
     the forces and torques of the whole dt (``World._kick``): the later kicks give gravity
     and damping, ``bodies`` the damping; ``acceleration`` (one row per view body) what forces
-    alone give each one [m/s²] (for particle rows: their kick)."""
+    alone give each one [m/s²] (for particle rows: their kick). Without joints the step is
+    one compiled call (``contact_step``); ``compiled=False`` runs the same stages from Python,
+    the loop that joints need (tests compare the two: the same bits)."""
     v = view
     c = contacts
     b = bodies
@@ -654,7 +682,7 @@ def step(view, bodies, contacts: BodyContacts, acceleration: np.ndarray,
     static = np.array((*softness(2.0 * hertz, DAMPING_RATIO, h), CONTACT_SPEED))
     out = SoftRows(c)
     jointed = joints is not None and len(joints) > 0
-    if not jointed:  # the whole step in one compiled call
+    if not jointed and compiled:  # the whole step in one compiled call
         return _contact_step(v, b, c, acceleration, history, h, threshold, gravity, substeps,
                              soft, static, out)
     r = _Rows(c)

@@ -26,6 +26,7 @@ from __future__ import annotations
 import math
 
 import numpy as np
+from numba import njit
 
 from ..rigid.bodies import _kinetic_energy
 
@@ -40,12 +41,19 @@ def kinetic_energy(view) -> float:
                                  view.inv_mass, view.inv_inertia))
 
 
-def gained(before: float, after: float) -> bool:
+@njit(cache=True, inline="always")
+def _gained(before, after):
     """Whether ``after`` exceeds ``before`` by more than round-off (or is not a number)."""
     return not after <= before * (1.0 + SLACK) + 1e-300
 
 
-def touching_warm_start(depth, impulse, jt1, jt2, jtw) -> None:
+def gained(before: float, after: float) -> bool:
+    """Whether ``after`` exceeds ``before`` by more than round-off (or is not a number)."""
+    return bool(_gained(before, after))
+
+
+@njit(cache=True, nogil=True)
+def touching_warm_start(depth, impulse, jt1, jt2, jtw):
     """Keep, of last step's impulses, only what can still act: the normal impulses of points
     that touch at this step's collision (a point with a gap has nothing to hold), no friction
     or twist (a step of motion later its direction and its cone are last step's). Warm started
@@ -54,15 +62,59 @@ def touching_warm_start(depth, impulse, jt1, jt2, jtw) -> None:
     warm start and +3 % after the substeps (rigid_fuzz seed 38; friction kept within its cone
     μ·Σλn still gained 1e-4 in seed 103). Within the step the substeps still warm start all
     of it."""
-    impulse[depth < 0.0] = 0.0
+    for c in range(depth.shape[0]):
+        if depth[c] < 0.0:
+            impulse[c] = 0.0
     jt1[:] = 0.0
     jt2[:] = 0.0
     jtw[:] = 0.0
 
 
+@njit(cache=True, nogil=True)
+def _scaled(s, v0, w0, dv, dw, vel, ang, quat, inv_mass, inv_inertia):
+    """Velocities v0 + s·dv, w0 + s·dw written to ``vel``, ``ang``; returns their energy."""
+    for i in range(vel.shape[0]):
+        for u in range(3):
+            vel[i, u] = v0[i, u] + s * dv[i, u]
+            ang[i, u] = w0[i, u] + s * dw[i, u]
+    return _kinetic_energy(vel, ang, quat, inv_mass, inv_inertia)
+
+
+@njit(cache=True, nogil=True)
+def limit_bounce(e0, absorbed, v0, w0, i0, vel, ang, impulse, quat, inv_mass, inv_inertia):
+    """After ``body_soft.restitution`` ran from velocities ``v0``, ``w0`` and impulses ``i0``
+    (kinetic energy ``e0``): if it left more energy than ``e0`` + ``absorbed`` (what the
+    step's contact stages took out), scale what it added by the largest s ∈ [0, 1] that keeps
+    within that (module docstring). Returns s."""
+    e1 = _kinetic_energy(vel, ang, quat, inv_mass, inv_inertia)
+    budget = max(absorbed, 0.0)
+    limit = e0 + budget
+    if not _gained(limit, e1):
+        return 1.0
+    dv = vel - v0
+    dw = ang - w0
+    half = _scaled(0.5, v0, w0, dv, dw, vel, ang, quat, inv_mass, inv_inertia)
+    a = 2.0 * (e1 - 2.0 * half + e0)  # KE(s) = e0 + b·s + a·s², a = KE(Δ) ≥ 0
+    b = e1 - e0 - a
+    if a > 0.0:
+        s = (-b + math.sqrt(max(b * b + 4.0 * a * budget, 0.0))) / (2.0 * a)
+    elif b > 0.0:
+        s = budget / b
+    else:
+        s = 1.0
+    s = min(max(s * (1.0 - 1e-9), 0.0), 1.0)
+    if _gained(limit, _scaled(s, v0, w0, dv, dw, vel, ang, quat, inv_mass, inv_inertia)):
+        s = 0.0
+        _scaled(s, v0, w0, dv, dw, vel, ang, quat, inv_mass, inv_inertia)
+    for c in range(impulse.shape[0]):
+        impulse[c] = i0[c] + s * (impulse[c] - i0[c])
+    return s
+
+
 class Budget:
-    """One step's energy bookkeeping for ``body_soft.step``: the energy each substep's
-    contact stages start from, and the energy the contacts have absorbed so far."""
+    """One step's energy bookkeeping for ``body_soft.step``'s loop with joints (the loop
+    without them, ``body_soft.contact_step``, keeps the same two sums itself): the energy each
+    substep's contact stages start from, and the energy the contacts have absorbed so far."""
 
     def __init__(self) -> None:
         self.start = 0.0  # KE(v_in) of this substep
@@ -78,38 +130,11 @@ class Budget:
 
     def bounce(self, view, impulse: np.ndarray, restitution) -> None:
         """Run ``restitution()`` (it applies the bounce impulses to ``view`` and adds them to
-        ``impulse``); if it left more energy than before it plus ``absorbed``, scale what it
-        added by the largest s ∈ [0, 1] that keeps within that (module docstring)."""
+        ``impulse``), then ``limit_bounce``."""
         v0 = view.velocity.copy()
         w0 = view.angular_velocity.copy()
         i0 = impulse.copy()
         e0 = kinetic_energy(view)
         restitution()
-        e1 = kinetic_energy(view)
-        budget = max(self.absorbed, 0.0)
-        limit = e0 + budget
-        if not gained(limit, e1):
-            return
-        dv = view.velocity - v0
-        dw = view.angular_velocity - w0
-        di = impulse - i0
-
-        def at(s: float) -> float:
-            view.velocity[:] = v0 + s * dv
-            view.angular_velocity[:] = w0 + s * dw
-            return kinetic_energy(view)
-
-        half = at(0.5)
-        a = 2.0 * (e1 - 2.0 * half + e0)  # KE(s) = e0 + b·s + a·s², a = KE(Δ) ≥ 0
-        b = e1 - e0 - a
-        if a > 0.0:
-            s = (-b + math.sqrt(max(b * b + 4.0 * a * budget, 0.0))) / (2.0 * a)
-        elif b > 0.0:
-            s = budget / b
-        else:
-            s = 1.0
-        s = min(max(s * (1.0 - 1e-9), 0.0), 1.0)
-        if gained(limit, at(s)):
-            s = 0.0
-            at(s)
-        impulse[:] = i0 + s * di
+        limit_bounce(e0, self.absorbed, v0, w0, i0, view.velocity, view.angular_velocity,
+                     impulse, view.orientation, view.inv_mass, view.inv_inertia)
