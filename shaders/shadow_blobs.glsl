@@ -4,12 +4,6 @@
 // on the CPU for llvmpipe (the same constants and profile). Blended with (ZERO,
 // ONE_MINUS_SRC_ALPHA), each disc multiplies what is under it by (1 - a): overlaps combine as
 // 1 - (1 - a)(1 - b) in any order, as the splatted map does.
-//
-// Fill is what they cost on a GPU (an H100 has few graphics units: 10 000 blobs at 1080p took
-// ~0.11 ms of a 0.89 ms frame), so the fragments that would not change a byte (a < 0.5/255:
-// the quad's corners, the faint rim) are discarded rather than blended, and a blob too faint
-// to change a byte anywhere is not drawn. (The quad stays a quad: an octagon would cut 17 %
-// of the fragments but triple the triangles; not measured on a GPU, so not taken.)
 
 #if defined VERTEX_SHADER
 
@@ -44,8 +38,7 @@ void main() {
 #endif
     float fade = r > 0.0 ? 1.0 - (c.y - r - u_ground) / (5.0 * r + u_fade_reach) : 0.0;
     v_uv = in_corner;
-    // (0.5/255: no fragment of a fainter blob changes a byte; see the fragment stage.)
-    if (r <= 0.0 || c.y < u_ground || u_strength * fade < 0.5 / 255.0 || glows >= 0.5) {
+    if (r <= 0.0 || c.y < u_ground || fade <= 0.0 || glows >= 0.5) {
         gl_Position = vec4(2.0, 2.0, 2.0, 1.0);
         v_alpha = 0.0;
         return;
@@ -66,11 +59,9 @@ out vec4 f_color;
 
 void main() {
     float q = dot(v_uv, v_uv);
+    // Alpha 0 outside the disc rather than a discard (cheaper, and the blend leaves it as it
+    // was).
     float a = q < 1.0 ? v_alpha * (1.0 - q) * (1.0 - 0.5 * q) : 0.0;
-    // Multiplying a byte by (1 - a) with a < 0.5/255 rounds back to it: no blend needed (the
-    // blend is the costly part of a fragment here; depth is neither written nor changed, so
-    // the discard keeps the early depth test).
-    if (a < 0.5 / 255.0) discard;
     f_color = vec4(0.0, 0.0, 0.0, a);
 }
 
