@@ -13,12 +13,30 @@
    angle within the substep, no more).
 
 There is no projection after the substeps (Box2D v3 has none): it moved bodies without their
-velocities. What each pass solves is ``joint_solver.velocity_pass``: the angular rows and the
-point blocks of the joints the tree cannot take by Gauss–Seidel (soft in the solve, with the
-spring's mass and impulse scales), the point blocks of a forest of joints (``joint_tree``:
-chains, ragdolls, pendulums; chosen by the graph's structure) exactly, all at once, each joint
-meeting its target (``joint_direct``, ``joint_loops``) — that solve is rigid, its bias rate
-the spring's.
+velocities. What each pass solves is ``joint_solver.velocity_pass``:
+
+- the point blocks of a forest of joints (``joint_tree`` DIRECT: chains, ragdolls, pendulums;
+  chosen by the graph's structure) exactly, all at once, each joint aimed at closing the gap
+  the pose the substep ends in would leave (``joint_predict``; repeated passes are Newton's
+  method, SHAKE; with the relax in the pose after the drift, RATTLE). Aimed so, a tree's
+  joints end each substep shut (< 1e-9 m in the pendulums of tests/physics/rigid/
+  test_joint_accuracy.py) and the energy swings exactly as semi-implicit Euler at h swings the
+  exact pendulum in its angle (±0.57 % of m·g·L at h = 1/240): the joints add nothing to it.
+  Where a pass leaves more to do than the one before (a lever arm that turns through a large
+  angle in a substep, joints that contradict one another) the substep falls back to the bias;
+- the angular rows (a hinge's locks, the limits), and the point blocks of the joints that
+  close a loop of the tree or that it cannot take, by Gauss–Seidel, soft in the solve (the
+  spring's mass and impulse scales: Box2D's rows). A loop is not solved through the tree here
+  (``joint_loops``, as the default stage does): its effective mass through the tree is near
+  singular where the joints contradict one another (two joints of one body to two fixed
+  points), and an exact solve of a contradiction launched the body (a random scene at 9e19
+  m/s in one step); a soft row only pulls.
+
+A bias closes a gap at the contacts' push-out speed (``body_soft.CONTACT_SPEED``, Box2D's
+``contactSpeed``) at most: a joint made 0.5 m open is pulled shut, not thrown shut.
+
+Measured (benchmarks/rigid_fuzz.py's scenes; ``joint_soft`` replacing the default stage's
+joint solve run per substep): see the report of issue 26's joint slice and ``body_soft``.
 
 Why the relax pass needs the pose after the drift. A pendulum turning at ω: the drift carries
 the bob along the tangent of the pose the substep started in, so the joint opens by the
@@ -46,8 +64,6 @@ JOINT_HERTZ = 60.0
 JOINT_DAMPING_RATIO = 2.0
 #: Largest stiffness as a fraction of the substep rate (Box2D's 0.25).
 JOINT_HERTZ_CAP = 0.25
-PREDICT = True
-LOOPS = False
 #: Joint passes per stage at most; they stop once no joint row changes a velocity by more
 #: than ``TOLERANCE`` [m/s or rad/s].
 MAX_PASSES = 30
@@ -77,8 +93,7 @@ def prepare(view, joints, h: float) -> SoftJointRows:
     """The joints' rows in the bodies' pose now (arms, masses, axes, limits, the tree's
     factors), targets for the solve (Ċ = −b·C) and for the relax pass (0)."""
     rate, mass_scale, impulse_scale = softness(h)
-    rows = joint_solver.prepare(view, joints, h, beta=rate * h, loops=LOOPS)
-    rows.predict = PREDICT
+    rows = joint_solver.prepare(view, joints, h, beta=rate * h, loops=False)
     rows.mass_scale = mass_scale
     rows.impulse_scale = impulse_scale
     # a gap is closed at the contacts' push-out speed at most (Box2D's ``contactSpeed``)
