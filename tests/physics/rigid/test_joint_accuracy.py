@@ -198,7 +198,7 @@ SOFT_DOUBLE = (-0.0090, 0.0078)
 @pytest.mark.parametrize("name", list(SCENES))
 def test_soft_step_joints_stay_shut_and_the_energy_is_the_integrators(name):
     """The soft step (4 substeps; the tree's joints aim at the pose each substep ends in and
-    are relaxed in it): gap < 0.5 mm (measured < 1e-9 m); the single pendulums' energy
+    are relaxed in it): gap < 0.5 mm (measured < 0.1 µm); the single pendulums' energy
     swings exactly as semi-implicit Euler at h = dt/4 swings the exact pendulum in its angle
     (measured ±0.57 %, within 0.002 % of it): the joints add nothing to the integrator's
     error, and lose nothing over 20 s."""
