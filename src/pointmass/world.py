@@ -55,10 +55,10 @@ class World:
             impulses, exact normals for small sets, position projection) or "soft" (Box2D
             v3's soft step, ``solver/body_soft.py``: after one collision pass, 4 substeps of
             soft contacts and relax, then restitution; it keeps linear and angular momentum
-            exactly and stands towers of 30 boxes, but is experimental, not the default yet:
-            12 tests of the earlier stage's exact figures do not hold with it, force-free
-            random scenes can gain energy with it, and it refuses joints (jointed random
-            scenes explode with it); see that module).
+            exactly, stands towers of 30 boxes and holds joints per substep
+            (``solver/joint_soft.py``), but is not the default yet: random jointed scenes can
+            still explode with it and force-free random scenes gain energy (issue 30); see
+            that module).
 
         settings: The solver's tuning numbers (``pm.SolverSettings``; its defaults when None):
             tolerances, caps on passes, when the exact solve and the threads are used.
@@ -298,12 +298,6 @@ class World:
             self._checked_bodies = max(self._checked_bodies, self.bodies.count)
             return generator
         elif isinstance(generator, Joint):
-            if self._body_step == "soft":
-                # Measured (rigid fuzz, seeds 0-99): 17 of the jointed random scenes explode
-                # with the soft step, whose substeps the joint solver was not built for.
-                raise NotImplementedError(
-                    'joints are not supported with World(body_step="soft") yet (jointed '
-                    'scenes blow up with it: issue 26); use the default body_step="impulses"')
             self.joints.add(generator, self.bodies)
             self._checked_bodies = max(self._checked_bodies, self.bodies.count)
             return generator

@@ -33,9 +33,10 @@ A separation s > 0 is a speculative point: its row lets the gap close within the
 further (target velocity −s/h), so it acts only once the bodies touch; it is not soft.
 
 Particles that touch bodies are rows with zero inverse inertia (``rigid/particle_body.py``):
-the same kernels, r×n·I⁻¹ vanishing. Joints are solved in the same substeps through
-``joint_solver`` (prepared, warm started and kept each substep, their passes beside the
-contact pass, their projection once after the substeps).
+the same kernels, r×n·I⁻¹ vanishing. Joints are solved in the same substeps as Box2D v3
+solves them (``joint_soft``: warm start, soft solve, relax in the pose the drift left; the
+point blocks of a tree of joints solved exactly, aimed at the pose the substep ends in; no
+projection).
 
 Where it stands (issue 26; ``World(body_step="soft")``, not yet the default). Measured with
 unit boxes (1 kg, μ 0.5), dt 1/60, sleep off (the default stage's figures in brackets): towers
@@ -49,10 +50,8 @@ the contact does). Not yet the default because 12 tests of the earlier stage's e
 not hold with it (a rotation cap now per substep, exact stepper
 equality, −e to 1e-4 on a corner, 5/7 rolling to 1e-6, a stack converged to 1e-9, buoyancy and
 spring equilibria, a pinned box's topple), and because the random scenes of
-benchmarks/rigid_fuzz.py (seeds 0–99) are far worse with it: 17 explosions, every one with
-joints (the joints are prepared and solved per substep at h through ``joint_solver``, whose
-bias and projection were tuned for one solve a step), energy gained in 23 of 42 force-free
-scenes (> 1e-3 in 8), overlaps > 2 cm in 30 scenes; the default stage: 0, 0, 10.
+benchmarks/rigid_fuzz.py (seeds 0–99) are worse with it: energy gained in force-free scenes
+and deep overlaps (``joint_soft``'s docstring has the jointed scenes' counts).
 """
 
 from __future__ import annotations
@@ -71,8 +70,8 @@ from ..rigid.shapes import SPHERE
 from ..rigid.step import integrate_positions, integrate_velocities
 from . import body_manifolds as bm
 from . import body_passes as bp
-from . import joint_solver, soft_energy
-from .body_stages import _arm_mass, world_inertia
+from . import joint_soft, soft_energy
+from .body_stages import _arm_mass
 from .kernels import bounce_target
 
 # Box2D v3's defaults (``src/types.c``, ``src/solver.c``); the lead moves them to SolverSettings.
@@ -110,12 +109,6 @@ TOLERANCE = 1e-5
 #: points) and keep plain Gauss–Seidel: over-relaxed too, a face-down box bounced 6 % too high
 #: (0.266·h). The solve alone at 1.5 (this): tower 32, pyramid 40 passes (apex 0.59 mm).
 OVER = 1.5
-#: Joint passes per substep at most, beside the contact pass; they stop once no joint changes
-#: a velocity by more than ``JOINT_TOLERANCE`` [m/s or rad/s].
-MAX_JOINT_PASSES = 30
-JOINT_TOLERANCE = 1e-5
-#: Joint projection passes after the substeps (``joint_solver.position_pass``).
-MAX_JOINT_PROJECTIONS = 10
 
 
 def softness(hertz: float, zeta: float, h: float) -> tuple[float, float, float]:
@@ -702,7 +695,7 @@ def step(view, bodies, contacts: BodyContacts, acceleration: np.ndarray,
     else:
         history.clear()
     passes = 0
-    jr = None
+    jr = joint_soft.prepare(v, joints, h) if jointed else None
     still = np.zeros((nb, 3))  # no forces or torques in the later kicks
     # restitution returns at most what the contacts absorbed (``soft_energy``): counted where
     # a point can bounce; with joints, their impulses are in the same velocities (their slice)
@@ -719,32 +712,32 @@ def step(view, bodies, contacts: BodyContacts, acceleration: np.ndarray,
                 raise spin_error(b, int(bad), h)
         if budget is not None:
             budget.begin(v)
+        if jointed:  # (``joint_soft``: Box2D's joint stages, the tree solved exactly)
+            joint_soft.warm_start(v, joints, jr)
         if c.count:
             warm_start(r.start, c.a, c.b, c.normal, r.t1, r.t2, v.inv_mass, v.velocity,
                        v.angular_velocity, r.impulse, r.jt1, r.jt2, r.jtw, r.arm, r.farm)
             passes += _pass(v, c, r, inv_h, True, soft, static, SOLVE_PASSES)
         if jointed:
-            jr = joint_solver.prepare(v, joints, h)
-            joint_solver.warm_start(v, joints, jr)
-            for _ in range(MAX_JOINT_PASSES):
-                change = joint_solver.velocity_pass(v, joints, jr)
-                passes += 1
-                if change <= JOINT_TOLERANCE:
-                    break
-                if c.count:
-                    _pass(v, c, r, inv_h, True, soft, static)
-            joint_solver.keep(joints, jr)
+            passes += joint_soft.solve(v, joints, jr, False, (lambda: _pass(
+                v, c, r, inv_h, True, soft, static)) if c.count else None)
         bad = integrate_positions(v.position, v.orientation, v.velocity, v.angular_velocity,
                                   v.inv_inertia, v.inv_inertia_world, h, awake)
         if bad >= 0:
             raise FloatingPointError(
                 f"body {bad} became non-finite (position {v.position[bad].tolist()}, velocity "
                 f"{v.velocity[bad].tolist()})")
+        if jointed:  # the rows in the pose the drift left: the relax's and the next solve's
+            jr = joint_soft.prepare(v, joints, h)
+            joint_soft.recall(joints, jr)
         if c.count:
             out.deepest = _refresh(v, c, r)
             passes += _pass(v, c, r, inv_h, False, soft, static, RELAX_PASSES)
-            if budget is not None:
-                budget.relaxed(v)
+        if jointed:
+            passes += joint_soft.solve(v, joints, jr, True, (lambda: _pass(
+                v, c, r, inv_h, False, soft, static)) if c.count else None)
+        if budget is not None and c.count:
+            budget.relaxed(v)
     out.velocity_passes = passes
     if c.count:
         def bounce() -> None:
@@ -764,13 +757,4 @@ def step(view, bodies, contacts: BodyContacts, acceleration: np.ndarray,
         kept = np.empty((c.count, 3))
         bm.split_friction(r.start, c.normal, r.t1, r.t2, r.jt1, r.jt2, r.jtw, kept)
         history.keep(c.key, held, kept)
-    if jr is not None:  # what the joints' rows left open, projected (their slice's method)
-        for n in range(1, MAX_JOINT_PROJECTIONS + 1):
-            out.position_passes = n
-            if joint_solver.position_pass(v, joints, jr):
-                break
-        world_inertia(v.orientation, v.inv_inertia, v.inv_inertia_world)
-        frozen = getattr(v, "frozen", None)
-        if frozen is not None:  # sleeping bodies a particle rests on stay immovable
-            v.inv_inertia_world[: frozen.shape[0]][frozen] = 0.0
     return out

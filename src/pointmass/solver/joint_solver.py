@@ -60,10 +60,17 @@ class JointRows:
     predict: bool = True
     #: What a step may leave of each joint's gap now (J, 3): (1 − β)·C (``joint_predict``).
     keep: np.ndarray | None = None
+    #: Box2D's soft rows (``joint_soft``) for the Gauss–Seidel rows whose target carries a
+    #: position bias: the impulse is mass_scale·(the rigid row's) − impulse_scale·(what the
+    #: row has accumulated). 1 and 0: rigid rows (the default stage, and every relax pass).
+    mass_scale: float = 1.0
+    impulse_scale: float = 0.0
 
 
-def prepare(bodies, joints, dt: float) -> JointRows:
-    """The rows of ``joints`` (a ``rigid.joint_set.Joints``) in the bodies' current pose."""
+def prepare(bodies, joints, dt: float, beta: float = BETA, loops: bool = True) -> JointRows:
+    """The rows of ``joints`` (a ``rigid.joint_set.Joints``) in the bodies' current pose, their
+    targets Ċ = −β·C/dt (``beta``: the fraction of a position error taken back in dt);
+    ``loops`` False leaves the joints that close a loop of a tree to Gauss–Seidel."""
     j = joints.arrays()
     n = j.a.shape[0]
     rows = JointRows(np.empty((n, 3)), np.empty((n, 3)), np.empty((n, 3, 3)), np.empty((n, 3)),
@@ -76,13 +83,15 @@ def prepare(bodies, joints, dt: float) -> JointRows:
     jt.choose(j.a, j.b, movable if awake is None else awake, movable, rows.mode)
     if not DIRECT:
         rows.mode[rows.mode >= jt.DIRECT] = jt.ITERATIVE
+    if not loops:
+        rows.mode[rows.mode == jt.LOOP] = jt.ITERATIVE
     js.prepare(j.a, j.b, j.local_a, j.frame_a, j.frame_b, j.kind, j.limits, j.local_b,
                b.inv_mass, b.inv_inertia_world, b.position, b.orientation, dt,
-               BETA, rows.ra, rows.rb, rows.kmat, rows.bias,
+               beta, rows.ra, rows.rb, rows.kmat, rows.bias,
                rows.axis, rows.mass, rows.target, rows.row)
     rows.tree = _factor(b, j, rows, movable, joints.point, dt)
     # the errors now, from the Baumgarte targets js.prepare set (−β·C/dt)
-    rows.keep = rows.bias * (-(1.0 - BETA) * dt / BETA)
+    rows.keep = rows.bias * (-(1.0 - beta) * dt / beta) if beta > 0.0 else rows.bias * 0.0
     return rows
 
 
@@ -143,7 +152,7 @@ def velocity_pass(bodies, joints, rows: JointRows) -> float:
     change = max(change, float(js.solve_pass(
         j.a, j.b, rows.ra, rows.rb, rows.kmat, rows.bias, rows.axis, rows.mass, rows.target,
         rows.row, b.inv_mass, b.inv_inertia_world, b.velocity, b.angular_velocity,
-        joints.point, rows.lam, rows.mode)))
+        joints.point, rows.lam, rows.mode, rows.mass_scale, rows.impulse_scale)))
     if rows.tree:
         nodes, parent, count, dinv, low, loops, where, sinv = rows.tree
         n = b.inv_mass.shape[0]

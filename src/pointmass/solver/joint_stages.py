@@ -277,11 +277,13 @@ def warm_start(ja, jb, ra, rb, axis, row, inv_mass, inv_i, vel, ang, point, turn
 
 @njit(cache=True, nogil=True)
 def solve_pass(ja, jb, ra, rb, kmat, bias, axis, mass, target, row, inv_mass, inv_i, vel, ang,
-               point, lam, mode):
+               point, lam, mode, mass_scale, impulse_scale):
     """One Gauss–Seidel pass over the joints: angular rows, then the point block (the point
     last, so it is the row most exactly met when the passes stop; not for a ``mode`` DIRECT
-    joint, whose point the tree solve takes). Returns the largest change of a row's velocity
-    in the pass [m/s or rad/s]."""
+    joint, whose point the tree solve takes). A row held by a position bias is soft with
+    ``mass_scale`` and ``impulse_scale`` (Box2D's ``b2Softness``; 1 and 0: rigid); an open
+    limit's speculative row never is. Returns the largest change of a row's velocity in the
+    pass [m/s or rad/s]."""
     largest = 0.0
     for j in range(ja.shape[0]):
         if mode[j] == OFF_JOINT:
@@ -296,7 +298,10 @@ def solve_pass(ja, jb, ra, rb, kmat, bias, axis, mass, target, row, inv_mass, in
             for k in range(3):
                 wb = ang[b, k] if b >= 0 else 0.0
                 rel += (wb - ang[a, k]) * (ux if k == 0 else uy if k == 1 else uz)
-            total = lam[j, s] + (target[j, s] - rel) * mass[j, s]
+            ms, keep = mass_scale, impulse_scale
+            if row[j, s] == LIMIT and target[j, s] <= 0.0:  # open: speculative, not soft
+                ms, keep = 1.0, 0.0
+            total = lam[j, s] + ms * (target[j, s] - rel) * mass[j, s] - keep * lam[j, s]
             if row[j, s] == LIMIT and total < 0.0:
                 total = 0.0  # a limit pushes, never pulls
             d = total - lam[j, s]
@@ -320,12 +325,19 @@ def solve_pass(ja, jb, ra, rb, kmat, bias, axis, mass, target, row, inv_mass, in
         cx -= bias[j, 0]
         cy -= bias[j, 1]
         cz -= bias[j, 2]
-        change = math.sqrt(cx * cx + cy * cy + cz * cz)
-        if change > largest:
-            largest = change
         k = kmat[j]
         px, py, pz = solve3(k[0, 0], k[0, 1], k[0, 2], k[1, 0], k[1, 1], k[1, 2], k[2, 0],
                             k[2, 1], k[2, 2], -cx, -cy, -cz)
+        if mass_scale != 1.0 or impulse_scale != 0.0:  # soft: the velocity change is K·P
+            px = mass_scale * px - impulse_scale * point[j, 0]
+            py = mass_scale * py - impulse_scale * point[j, 1]
+            pz = mass_scale * pz - impulse_scale * point[j, 2]
+            cx = -(k[0, 0] * px + k[0, 1] * py + k[0, 2] * pz)
+            cy = -(k[1, 0] * px + k[1, 1] * py + k[1, 2] * pz)
+            cz = -(k[2, 0] * px + k[2, 1] * py + k[2, 2] * pz)
+        change = math.sqrt(cx * cx + cy * cy + cz * cz)
+        if change > largest:
+            largest = change
         point[j, 0] += px
         point[j, 1] += py
         point[j, 2] += pz

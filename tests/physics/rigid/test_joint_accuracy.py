@@ -38,9 +38,9 @@ GAP = 0.5e-3
 ENERGY = 0.005
 
 
-def _pendulum(joint: str, shape: str, substeps: int = 1):
+def _pendulum(joint: str, shape: str, substeps: int = 1, body_step: str = "impulses"):
     """1 kg on a 1 m arm from a world anchor at the origin, released level (along +x)."""
-    world = pm.World(gravity=(0.0, -G, 0.0), substeps=substeps)
+    world = pm.World(gravity=(0.0, -G, 0.0), substeps=substeps, body_step=body_step)
     body = world.add_body(Box((0.1, 0.1, 0.1)) if shape == "box" else Sphere(0.1),
                           (1.0, 0.0, 0.0), mass=1.0)
     if joint == "ball":
@@ -50,11 +50,11 @@ def _pendulum(joint: str, shape: str, substeps: int = 1):
     return world, 1.0 * G * 1.0
 
 
-def _double(substeps: int = 1):
+def _double(substeps: int = 1, body_step: str = "impulses"):
     """Two 1 kg boxes 0.5 m long on ball joints: the upper one level from the world anchor at
     the origin, the lower one hanging from its tip bent 45° below it; the energy it moves is
     its height above both boxes hanging straight down."""
-    world = pm.World(gravity=(0.0, -G, 0.0), substeps=substeps)
+    world = pm.World(gravity=(0.0, -G, 0.0), substeps=substeps, body_step=body_step)
     upper = world.add_body(Box((0.25, 0.05, 0.05)), (0.25, 0.0, 0.0), mass=1.0)
     bend = math.radians(-45.0)
     lower = world.add_body(Box((0.25, 0.05, 0.05)),
@@ -88,9 +88,9 @@ def _swing(world, scale):
 
 
 SCENES = {
-    "ball box": lambda s=1: _pendulum("ball", "box", s),
-    "ball sphere": lambda s=1: _pendulum("ball", "sphere", s),
-    "hinge box": lambda s=1: _pendulum("hinge", "box", s),
+    "ball box": lambda s=1, step="impulses": _pendulum("ball", "box", s, step),
+    "ball sphere": lambda s=1, step="impulses": _pendulum("ball", "sphere", s, step),
+    "hinge box": lambda s=1, step="impulses": _pendulum("hinge", "box", s, step),
     "double": _double,
 }
 #: Energy band at the defaults (the ratchet: measured low, high, as fractions of the swing's
@@ -105,9 +105,9 @@ MEASURED = {
 
 
 @functools.cache
-def _result(name: str, substeps: int = 1):
-    """Each scene is run once per substep count and shared by the tests that read it."""
-    return _swing(*SCENES[name](substeps))
+def _result(name: str, substeps: int = 1, body_step: str = "impulses"):
+    """Each scene is run once per substep count and stage, shared by the tests that read it."""
+    return _swing(*SCENES[name](substeps, body_step))
 
 
 @pytest.mark.parametrize("name", list(SCENES))
@@ -160,5 +160,75 @@ def test_with_eight_substeps_the_energy_is_within_half_a_percent(name):
 @pytest.mark.parametrize("name", list(SCENES))
 def test_issue_26_point_6_energy_at_the_defaults(name):
     gap, band, _ = _result(name)
+    assert gap < GAP
+    assert -ENERGY <= band[0] and band[1] <= ENERGY
+
+
+# --- the soft step (``World(body_step="soft")``: ``solver/joint_soft``) ---------------------------
+
+SOFT = "soft"
+
+
+def _euler_band(inertia: float, substeps: int = 4) -> tuple[float, float]:
+    """The energy band (low, high; fractions of m·g·L) that semi-implicit Euler at
+    h = dt/``substeps`` gives the exact pendulum of these scenes in its angle (1 kg, L = 1 m,
+    ``inertia`` [kg·m²] about the centre, released level), over the same 20 s, read at every
+    step: what the integrator itself swings by, whatever the joints do."""
+    h = DT / substeps
+    moment = inertia + 1.0
+    theta = omega = 0.0
+    low = high = 0.0
+    for n in range(STEPS * substeps):
+        omega += h * G * math.cos(theta) / moment
+        theta += h * omega
+        if (n + 1) % substeps == 0:
+            e = (0.5 * moment * omega * omega - G * math.sin(theta)) / G
+            low, high = min(low, e), max(high, e)
+    return low, high
+
+
+#: The bodies' inertia about their centre [kg·m²]: a 0.2 m cube and a 0.1 m sphere of 1 kg.
+INERTIA = {"ball box": 0.08 / 12, "ball sphere": 0.4 * 0.01, "hinge box": 0.08 / 12}
+#: The double pendulum's energy band with the soft step (measured; a ratchet: the issue's
+#: target is ±0.5 %; semi-implicit Euler's own band at h = 1/240 is ±0.57 % for the single
+#: pendulum, larger for the double one's faster lower link).
+SOFT_DOUBLE = (-0.0090, 0.0078)
+
+
+@pytest.mark.parametrize("name", list(SCENES))
+def test_soft_step_joints_stay_shut_and_the_energy_is_the_integrators(name):
+    """The soft step (4 substeps; the tree's joints aim at the pose each substep ends in and
+    are relaxed in it): gap < 0.5 mm (measured < 0.1 µm); the single pendulums' energy
+    swings exactly as semi-implicit Euler at h = dt/4 swings the exact pendulum in its angle
+    (measured ±0.57 %, within 0.002 % of it): the joints add nothing to the integrator's
+    error, and lose nothing over 20 s."""
+    gap, band, _ = _result(name, 1, SOFT)
+    assert gap < GAP
+    if name == "double":
+        low, high = SOFT_DOUBLE
+        assert band[0] >= low - 0.001
+        assert band[1] <= high + 0.001
+        return
+    low, high = _euler_band(INERTIA[name])
+    assert band[0] == pytest.approx(low, abs=0.0002)
+    assert band[1] == pytest.approx(high, abs=0.0002)
+
+
+@pytest.mark.xfail(strict=True, reason="issue 26 point 6 with the soft step: semi-implicit "
+                   "Euler at h = 1/240 swings KE + PE by ±0.57 % of m·g·L (the exact pendulum "
+                   "in its angle), whatever the joints do; met with 8 substeps (below)")
+@pytest.mark.parametrize("name", list(SCENES))
+def test_issue_26_point_6_energy_with_the_soft_step(name):
+    gap, band, _ = _result(name, 1, SOFT)
+    assert gap < GAP
+    assert -ENERGY <= band[0] and band[1] <= ENERGY
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("name", list(SCENES))
+def test_soft_step_with_eight_substeps_the_energy_is_within_half_a_percent(name):
+    """The issue's target with the soft step once the integrator's own error allows it:
+    ``World(substeps=2)``, 8 soft substeps of dt/8. Gap < 0.5 mm, energy within ±0.5 %."""
+    gap, band, _ = _result(name, 2, SOFT)
     assert gap < GAP
     assert -ENERGY <= band[0] and band[1] <= ENERGY

@@ -1,0 +1,166 @@
+"""The joints in the soft step (``body_soft``), as Box2D v3 solves them (``src/solver.c``,
+``src/joint.c`` ``b2PrepareJoint``, ``src/revolute_joint.c``): each substep, after the kick,
+
+1. warm start — the impulse each joint needed last substep is applied again (the point
+   block's and the angular rows', seen along this pose's axes);
+2. solve — the rows with a soft position bias: Ċ = −b·C, C the joint's gap and angles in the
+   bodies' current pose, b the bias rate of a spring of ``JOINT_HERTZ`` and damping ratio
+   ``JOINT_DAMPING_RATIO`` solved implicitly over the substep (``body_soft.softness``);
+3. (the drift, ``body_soft``);
+4. relax — the rows again in the pose the drift left, without the bias (Ċ = 0, rigid): the
+   velocity the bias made to close a gap is taken back, so a gap is closed by moving the
+   bodies, not by launching them. An open limit stays speculative in both (it may close by its
+   angle within the substep, no more).
+
+There is no projection after the substeps (Box2D v3 has none): it moved bodies without their
+velocities. What each pass solves is ``joint_solver.velocity_pass``:
+
+- the point blocks of a forest of joints (``joint_tree`` DIRECT: chains, ragdolls, pendulums;
+  chosen by the graph's structure) exactly, all at once, each joint aimed at closing the gap
+  the pose the substep ends in would leave (``joint_predict``; repeated passes are Newton's
+  method, SHAKE; with the relax in the pose after the drift, RATTLE). Aimed so, a tree's
+  joints end each substep shut (< 0.1 µm in the pendulums of tests/physics/rigid/
+  test_joint_accuracy.py) and the energy swings exactly as semi-implicit Euler at h swings the
+  exact pendulum in its angle (±0.57 % of m·g·L at h = 1/240): the joints add nothing to it.
+  Where a pass leaves more to do than the one before (a lever arm that turns through a large
+  angle in a substep, joints that contradict one another) the substep falls back to the bias;
+- the angular rows (a hinge's locks, the limits), and the point blocks of the joints that
+  close a loop of the tree or that it cannot take, by Gauss–Seidel, soft in the solve (the
+  spring's mass and impulse scales: Box2D's rows). A loop is not solved through the tree here
+  (``joint_loops``, as the default stage does): its effective mass through the tree is near
+  singular where the joints contradict one another (two joints of one body to two fixed
+  points), and an exact solve of a contradiction launched the body (a random scene at 9e19
+  m/s in one step); a soft row only pulls.
+
+A bias closes a gap at the contacts' push-out speed (``body_soft.CONTACT_SPEED``, Box2D's
+``contactSpeed``) at most: a joint made 0.5 m open is pulled shut, not thrown shut.
+
+Measured (benchmarks/rigid_fuzz.py, seeds 0–99, 300 steps, ``World(body_step="soft")``; 73
+jointed scenes): 7 explode (> 1e4 m/s; 17 with ``joint_solver`` run per substep before this
+module, 0 with the default stage, whose energy guard redoes a solve that gains), 29 of the 33
+jointed force-free scenes have a step that gains > 1e-9 of the kinetic energy (12 > 1e-3),
+29 end a step with an overlap > 2 cm; no hang. What is left is energy from joints that
+contradict one another (two joints of one light body to far points, hit by heavy bodies): the
+soft step has no energy guard yet.
+
+Why the relax pass needs the pose after the drift. A pendulum turning at ω: the drift carries
+the bob along the tangent of the pose the substep started in, so the joint opens by the
+sagitta ½(ω·h)²·L; the bias then pulls the bob in at about ½ω²·L·h, and in the relax pass,
+seen from the turned arm, that inward velocity has a tangential part that gives back what
+making the velocity tangent to the new arm takes (ω·h)² of the energy a substep. Relaxed
+along the old arm instead, the pendulum loses that energy every substep.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, replace
+
+import numpy as np
+from numba import njit
+
+from . import joint_solver
+from .joint_stages import LIMIT, OFF
+from .joint_tree import OFF as OFF_JOINT
+
+#: Stiffness of a joint's position bias [Hz] and its damping ratio (Box2D v3's
+#: ``constraintHertz`` 60, ``constraintDampingRatio`` 2, the hertz capped at a quarter of the
+#: substep rate). Measured (dt 1/60, 4 substeps, 20 s): see ``body_soft``'s docstring.
+JOINT_HERTZ = 60.0
+JOINT_DAMPING_RATIO = 2.0
+#: Largest stiffness as a fraction of the substep rate (Box2D's 0.25).
+JOINT_HERTZ_CAP = 0.25
+#: Joint passes per stage at most; they stop once no joint row changes a velocity by more
+#: than ``TOLERANCE`` [m/s or rad/s].
+MAX_PASSES = 30
+TOLERANCE = 1e-5
+
+
+@dataclass
+class SoftJointRows:
+    """One pose's joint rows, as the solve (soft bias) and as the relax pass (no bias) read
+    them: both share the arms, masses, the tree's factors and the accumulated impulses."""
+
+    solve: joint_solver.JointRows
+    relax: joint_solver.JointRows
+    #: The solve's targets of the point blocks before any aiming (Ċ = −b·C), to fall back on.
+    bias: np.ndarray
+
+
+def softness(h: float) -> tuple[float, float, float]:
+    """(bias rate [1/s], mass scale, impulse scale) of the joints' spring over a substep h."""
+    from .body_soft import softness as make_soft  # (body_soft imports this module)
+
+    hertz = min(JOINT_HERTZ, JOINT_HERTZ_CAP / h)
+    return make_soft(hertz, JOINT_DAMPING_RATIO, h)
+
+
+def prepare(view, joints, h: float) -> SoftJointRows:
+    """The joints' rows in the bodies' pose now (arms, masses, axes, limits, the tree's
+    factors), targets for the solve (Ċ = −b·C) and for the relax pass (0)."""
+    rate, mass_scale, impulse_scale = softness(h)
+    rows = joint_solver.prepare(view, joints, h, beta=rate * h, loops=False)
+    rows.mass_scale = mass_scale
+    rows.impulse_scale = impulse_scale
+    # a gap is closed at the contacts' push-out speed at most (Box2D's ``contactSpeed``)
+    from .body_soft import CONTACT_SPEED
+
+    size = np.sqrt((rows.bias * rows.bias).sum(axis=1))
+    rows.bias *= np.minimum(1.0, CONTACT_SPEED / np.maximum(size, 1e-300))[:, None]
+    # relax: no bias; a limit still open keeps its speculative target (≤ 0), a violated one
+    # (target > 0) and every equality row aim at Ċ = 0
+    target = np.where((rows.row == LIMIT) & (rows.target < 0.0), rows.target, 0.0)
+    relax = replace(rows, bias=np.zeros_like(rows.bias), target=target, mass_scale=1.0,
+                    impulse_scale=0.0, predict=False)
+    return SoftJointRows(rows, relax, rows.bias.copy())
+
+
+def warm_start(view, joints, rows: SoftJointRows) -> None:
+    """Apply the impulses the joints needed last substep (``joints.point``, ``joints.turn``)."""
+    joint_solver.warm_start(view, joints, rows.solve)
+
+
+def recall(joints, rows: SoftJointRows) -> None:
+    """Take the angular impulses kept (``joints.turn``) as this pose's accumulated ones
+    without applying them again (the relax pass goes on from what the solve reached)."""
+    _recall(joints.turn, rows.solve.axis, rows.solve.row, rows.solve.mode, rows.solve.lam)
+
+
+@njit(cache=True, nogil=True)
+def _recall(turn, axis, row, mode, lam):
+    for j in range(axis.shape[0]):
+        for s in range(3):
+            x = 0.0
+            if mode[j] != OFF_JOINT and row[j, s] != OFF:
+                x = (turn[j, s, 0] * axis[j, s, 0] + turn[j, s, 1] * axis[j, s, 1]
+                     + turn[j, s, 2] * axis[j, s, 2])
+                if row[j, s] == LIMIT and x < 0.0:
+                    x = 0.0
+            lam[j, s] = x
+
+
+def solve(view, joints, rows: SoftJointRows, relax: bool, contact_pass=None) -> int:
+    """Joint passes of the solve (``relax`` False) or the relax stage, each followed by one
+    ``contact_pass()`` of the same stage if given, until no joint row changes a velocity by
+    more than ``TOLERANCE``; then the angular impulses are kept (``joints.turn``) for the
+    relax pass and the next substep's warm start. Returns the passes run.
+
+    The solve's aim at the end pose is Newton's method (``joint_predict``): where a pass
+    leaves more to do than the one before (it diverges: a lever arm turning through a large
+    angle in a substep, joints that contradict each other), the rest of the substep keeps
+    the bias targets."""
+    r = rows.relax if relax else rows.solve
+    passes = 0
+    last = np.inf
+    while passes < MAX_PASSES:
+        passes += 1
+        change = joint_solver.velocity_pass(view, joints, r)
+        if change <= TOLERANCE:
+            break
+        if r.predict and change >= last:
+            r.predict = False
+            r.bias[:] = rows.bias
+        last = change
+        if contact_pass is not None:
+            contact_pass()
+    joint_solver.keep(joints, r)
+    return passes
