@@ -12,9 +12,10 @@ budget, the impulses they added are scaled by the largest s ∈ [0, 1] that keep
 both momenta are kept). For a single point with e ≤ 1 it never acts (it returns e² of what
 that point absorbed).
 
-Neither covers everything (measured, issue 30): 4 of 100 force-free joint-free scenes (40
-steps) still gain 2e-9 … 3e-6 in a step (24 before ``touching_warm_start``; 15 of 37 at 300
-steps before both, the worst step +62 %). Left: the substeps push at the arms and inertia of
+It does not cover everything (measured, issue 30): 27 of 100 force-free joint-free scenes (40
+steps) still gain more than 1e-9 in a step, 3 of them more than 1e-3 (the worst +2.9 %); of
+the 37 of seeds 0–299 at 300 steps, 15, one > 1e-3 (before: 15, six > 1e-3, the worst step
++62 %). Left: the substeps push at the arms and inertia of
 the pose before the drift and the relax takes back at the pose after it; a speculative row
 letting go of an impulse gains energy whenever −s/h < v·n < s/h. A relax redone cold from
 the substep's v_in is energy-safe but breaks angular momentum (1e-2 in
@@ -50,24 +51,6 @@ def _gained(before, after):
 def gained(before: float, after: float) -> bool:
     """Whether ``after`` exceeds ``before`` by more than round-off (or is not a number)."""
     return bool(_gained(before, after))
-
-
-@njit(cache=True, nogil=True)
-def touching_warm_start(depth, impulse, jt1, jt2, jtw):
-    """Keep, of last step's impulses, only what can still act: the normal impulses of points
-    that touch at this step's collision (a point with a gap has nothing to hold), no friction
-    or twist (a step of motion later its direction and its cone are last step's). Warm started
-    across the step, they were velocity the soft solve had to take back from a pose the relax
-    no longer saw: a box spinning onto the ground at 47 m/s had its kinetic energy ×10 by the
-    warm start and +3 % after the substeps (rigid_fuzz seed 38; friction kept within its cone
-    μ·Σλn still gained 1e-4 in seed 103). Within the step the substeps still warm start all
-    of it."""
-    for c in range(depth.shape[0]):
-        if depth[c] < 0.0:
-            impulse[c] = 0.0
-    jt1[:] = 0.0
-    jt2[:] = 0.0
-    jtw[:] = 0.0
 
 
 @njit(cache=True, nogil=True)
