@@ -166,7 +166,10 @@ def _pool_pass(sweep, runs, root, on_done, on_crash, workers, needs_main) -> lis
                     on_done(run, meta)
                 if waiting and not broken:
                     submit()
-                    pending = set(futures)
+            # what is still out: not ``pending`` updated inside the loop above, which held the
+            # other futures of ``done`` not yet handled (two finishing at once, as every one
+            # does when a worker dies, made the next wait return a handled one: KeyError)
+            pending = set(futures)
     except BaseException:
         # Ctrl-C/SIGTERM: nothing new starts; the runs in flight finish and commit.
         pool.shutdown(wait=True, cancel_futures=True)
