@@ -172,10 +172,10 @@ def tiny_worlds() -> dict:
 
     return {"1-particle world": particle,
             "1 particle (r 0.1) on the ground": resting_particle,
-            "1 sphere body on the ground": resting_sphere(True),
-            "1 sphere body on the ground, sleep off": resting_sphere(False),
+            "1 sphere body on the ground, impulses step": resting_sphere(True),
+            "1 sphere body on the ground, impulses step, sleep off": resting_sphere(False),
             "1 sphere body on the ground, soft step": resting_sphere(True, "soft"),
-            "  the same, sleep off": resting_sphere(False, "soft")}
+            "1 sphere body on the ground, soft step, sleep off": resting_sphere(False, "soft")}
 
 
 def bench_tiny(steps: int, repeats: int, build=None) -> float:
@@ -227,7 +227,7 @@ def main() -> None:
     pit_row(args)
     for name, build in tiny_worlds().items():
         tiny = bench_tiny(20_000 if not args.quick else 5_000, repeats, build)
-        print(f"{name + ', steps/s':34s} {tiny:12.3g}")
+        print(f"{name + ', steps/s':60s} {tiny:12.3g}")
 
 
 if __name__ == "__main__":

@@ -28,11 +28,13 @@ highest box, pyramid: the apex), the max and mean linear speed, the deepest box�
 beyond the floor or a wall, and the escapes (centre below the floor or outside the walls).
 "At rest" for the pit is max speed ≤ 0.1 m/s and box overlap ≤ 1 cm.
 
-Engine settings: pointmass, ``World()`` defaults (islands sleep; "pointmass, sleep off" is
-``World(sleep=False)``, the baseline for what sleeping buys, with the awake count and the time
-everything was asleep printed under the table; "pointmass soft" and "pointmass soft, sleep off"
-are the same with ``World(body_step="soft")``, issue 26's soft step: e.g. ``--engines
-pointmass-nosleep pointmass-soft-nosleep mujoco`` for its point 10); PyBullet, DIRECT mode,
+Engine settings: pointmass, ``World()``'s defaults, each row naming its body stage
+(``body_step``): "pointmass impulses" the earlier stage, "pointmass soft" issue 26's soft step;
+islands sleep, and ", sleep off" is ``World(sleep=False)``, the baseline for what sleeping buys,
+with the awake count and the time everything was asleep printed under the table. The aliases
+``pointmass`` and ``pointmass-nosleep`` run the stage ``World()`` defaults to, e.g.
+``--engines pointmass-nosleep pointmass-impulses-nosleep mujoco`` for issue 26's point 10;
+PyBullet, DIRECT mode,
 defaults (50 solver iterations, no substeps), maximal coordinates, damping zeroed (the others
 have none), friction √0.5 per shape (Bullet multiplies the two), restitution 0; MuJoCo 4,
 free-joint boxes, condim 3, friction 0.5 on every geom (MuJoCo takes the larger), pyramidal
@@ -43,6 +45,7 @@ CG; z up in MuJoCo, converted back here.
 from __future__ import annotations
 
 import argparse
+import inspect
 import math
 import statistics
 import sys
@@ -119,7 +122,12 @@ def _stepper(step, steps: int, budget: float) -> tuple[float, int]:
     return time.perf_counter() - start, done
 
 
-def build_pointmass(scene: Scene, sleep: bool = True, body_step: str = "impulses") -> pm.World:
+#: The body stage ``World()`` uses when none is named (its ``body_step`` default).
+DEFAULT_STAGE = inspect.signature(pm.World).parameters["body_step"].default
+
+
+def build_pointmass(scene: Scene, sleep: bool = True,
+                    body_step: str = DEFAULT_STAGE) -> pm.World:
     world = pm.World(gravity=(0.0, -G, 0.0), sleep=sleep, body_step=body_step)
     world.add(pm.Ground(restitution=0.0, friction=MU))
     if scene.pit is not None:
@@ -136,7 +144,7 @@ SLEEP_NOTES: list[tuple[str, str]] = []
 
 
 def run_pointmass(scene: Scene, steps: int, budget: float, sleep: bool = True,
-                  body_step: str = "impulses"):
+                  body_step: str = DEFAULT_STAGE):
     world = build_pointmass(scene, sleep, body_step)
     asleep_since = [None]  # the time the last body fell asleep, if all still sleep
 
@@ -147,8 +155,7 @@ def run_pointmass(scene: Scene, steps: int, budget: float, sleep: bool = True,
     seconds, done = _stepper(step, steps, budget)
     b = world.bodies
     since = "never all" if asleep_since[0] is None else f"all from t = {asleep_since[0]:.2f} s"
-    soft = " soft" if body_step == "soft" else ""
-    SLEEP_NOTES.append((f"pointmass{soft}{'' if sleep else ', sleep off'}",
+    SLEEP_NOTES.append((f"pointmass {body_step}{'' if sleep else ', sleep off'}",
                         f"{int(b.awake.sum())}/{b.count} awake at the end; asleep: {since}"))
     return seconds, done, b.position.copy(), b.orientation.copy(), b.velocity.copy()
 
@@ -238,22 +245,24 @@ def run_mujoco(scene: Scene, steps: int, budget: float, solver: str = "Newton"):
 
 
 ENGINES = {
-    "pointmass": run_pointmass,
-    "pointmass, sleep off": lambda scene, steps, budget: run_pointmass(scene, steps, budget,
-                                                                       sleep=False),
-    "pointmass soft": lambda scene, steps, budget: run_pointmass(scene, steps, budget,
-                                                                 body_step="soft"),
-    "pointmass soft, sleep off": lambda scene, steps, budget: run_pointmass(
-        scene, steps, budget, sleep=False, body_step="soft"),
+    f"pointmass {stage}{', sleep off' if not sleep else ''}":
+        lambda scene, steps, budget, stage=stage, sleep=sleep: run_pointmass(
+            scene, steps, budget, sleep=sleep, body_step=stage)
+    for stage in ("impulses", "soft") for sleep in (True, False)}
+ENGINES.update({
     "PyBullet (50 it)": run_pybullet,
     "MuJoCo Newton": run_mujoco,
     "MuJoCo CG": lambda scene, steps, budget: run_mujoco(scene, steps, budget, "CG"),
-}
-ALIASES = {"pointmass": "pointmass", "pointmass-nosleep": "pointmass, sleep off",
+})
+ALIASES = {"pointmass-impulses": "pointmass impulses",
+           "pointmass-impulses-nosleep": "pointmass impulses, sleep off",
            "pointmass-soft": "pointmass soft",
            "pointmass-soft-nosleep": "pointmass soft, sleep off",
            "pybullet": "PyBullet (50 it)",
            "mujoco": "MuJoCo Newton", "mujoco-cg": "MuJoCo CG"}
+#: World()'s own stage, whichever it is (not in the default engine list: it is one of the above).
+DEFAULT_ALIASES = {"pointmass": f"pointmass {DEFAULT_STAGE}",
+                   "pointmass-nosleep": f"pointmass {DEFAULT_STAGE}, sleep off"}
 
 
 # --- the same measurements for every engine ----------------------------------------------------
@@ -362,10 +371,12 @@ def main() -> None:
     parser.add_argument("--scenes", nargs="+", default=["tower", "pyramid", "pit"],
                         choices=["tower", "pyramid", "pit"])
     parser.add_argument("--engines", nargs="+", default=list(ALIASES),
-                        choices=list(ALIASES), help="pointmass, pointmass-nosleep (World("
-                        "sleep=False), the baseline of sleeping), pointmass-soft and "
+                        choices=list(ALIASES) + list(DEFAULT_ALIASES),
+                        help="pointmass-impulses, pointmass-impulses-nosleep (World(sleep="
+                        "False), the baseline of sleeping), pointmass-soft and "
                         "pointmass-soft-nosleep (the same with World(body_step=\"soft\")), "
-                        "pybullet, mujoco (Newton), mujoco-cg")
+                        "pointmass and pointmass-nosleep (World()'s own stage), pybullet, "
+                        "mujoco (Newton), mujoco-cg")
     parser.add_argument("--repeats", type=int, default=1)
     parser.add_argument("--budget", type=float, default=300.0,
                         help="wall-clock cap [s] on one run's timed stepping")
@@ -396,7 +407,7 @@ def main() -> None:
         base = None
         SLEEP_NOTES.clear()
         for alias in args.engines:
-            name = ALIASES[alias]
+            name = {**ALIASES, **DEFAULT_ALIASES}[alias]
             try:
                 runs = [ENGINES[name](scene, steps, args.budget) for _ in range(args.repeats)]
             except ImportError as exc:

@@ -100,13 +100,22 @@ def _momenta(world):
     return p, spin
 
 
-def test_a_free_jointed_pair_keeps_its_momentum_and_angular_momentum():
+@pytest.mark.parametrize("stage", ["impulses", "soft"])
+def test_a_free_jointed_pair_keeps_its_momentum_and_angular_momentum(stage):
     """No gravity: two boxes on one joint, turning together and flying, for 10 s. Linear
-    momentum to rounding, angular momentum (about the origin) within 1 % (measured 0.17 %), and
-    the energy never grows (the energy guard, ``body_energy``: a step whose joint solve would
-    gain, as aiming at the end pose does by the chord's O((ω·dt)²), is redone without
-    aiming; measured −0.09 % in 10 s)."""
-    world = pm.World(gravity=(0.0, 0.0, 0.0))
+    momentum to rounding, and each stage by its own method:
+
+    * "impulses": angular momentum (about the origin) within 1 % (measured 0.17 %), the joint
+      within 1 mm, and the energy never grows (the energy guard, ``body_energy``: a step whose
+      joint solve would gain, as aiming at the end pose does by the chord's O((ω·dt)²), is
+      redone without aiming; measured −0.09 % in 10 s);
+    * "soft" (``joint_soft``): its joint impulses are equal and opposite at one point and the
+      drift is torque-free, so angular momentum is kept by construction, to rounding (1e-9;
+      measured 6.5e-11), and the joint aimed at the end pose every substep stays shut (1e-6 m;
+      measured 1.4e-10 m). It has no energy guard: the energy stays in a band with no drift,
+      within 1e-7 relative (measured +3.3e-8 / −4.5e-8; ratchet, issue 30's target is no step
+      gaining more than 1e-9, not met here: 160 of 600 steps gain more)."""
+    world = pm.World(gravity=(0.0, 0.0, 0.0), body_step=stage)
     omega = np.array([0.3, 0.5, 2.0])
     centre = np.array([0.5 / 3, 0.0, 0.0])  # the pair's centre of mass
     flight = np.array([1.0, 0.0, 0.0])
@@ -119,13 +128,17 @@ def test_a_free_jointed_pair_keeps_its_momentum_and_angular_momentum():
     joint = world.add(BallJoint(a, (0.25, 0.0, 0.0), b))
     p0, l0 = _momenta(world)
     e0 = world.kinetic_energy()
+    gain = 1e-9 if stage == "impulses" else 1e-7
     for _ in range(600):
         world.step(DT)
-        assert world.kinetic_energy() <= e0 * (1 + 1e-9)
+        assert world.kinetic_energy() <= e0 * (1 + gain)
+        if stage == "soft":
+            assert world.kinetic_energy() >= e0 * (1 - gain)
     p1, l1 = _momenta(world)
     assert np.abs(p1 - p0).max() < 1e-12
-    assert np.linalg.norm(l1 - l0) / np.linalg.norm(l0) < 0.01
-    assert joint.separation() < 1e-3
+    spin = 0.01 if stage == "impulses" else 1e-9
+    assert np.linalg.norm(l1 - l0) / np.linalg.norm(l0) < spin
+    assert joint.separation() < (1e-3 if stage == "impulses" else 1e-6)
 
 
 def _hung_rod(make, steps: int = 300, torque=None):

@@ -245,10 +245,10 @@ def _largest_move(world, boxes):
     return np.abs(np.array([b.position for b in boxes]) - before).max()
 
 
-def _woken_sag(cold):
+def _woken_sag(cold, **kwargs):
     """The pile put to sleep and woken; how far a box moves in the first step after, the keys
     kept, and the steps it took to fall asleep."""
-    world = _world()
+    world = _world(**kwargs)
     boxes = _pile(world)
     steps = round(_step_until_asleep(world) / DT)
     world.step(DT)  # a step with every body asleep: no rows, the history is empty
@@ -261,23 +261,34 @@ def _woken_sag(cold):
     return _largest_move(world, boxes), held, world, steps
 
 
-def test_a_woken_pile_starts_from_the_impulses_it_slept_with():
+@pytest.mark.parametrize("stage", ["impulses", "soft"])
+def test_a_woken_pile_starts_from_the_impulses_it_slept_with(stage):
     """The first step after waking is that of the same pile never put to sleep, its
     velocities zeroed (what sleeping does), to the bit: the warm start kept nothing less.
-    Without it (cold) a box moves further. Measured: 9.7e-5 m warm, 1.8e-4 m cold (the pile
-    sleeps at 0.52 s, still rocking at 1 cm/s, which 30 passes do not remove in a step;
-    per-point friction: 1.4e-5 m warm, 2.3e-4 m cold)."""
-    warm, held, world, steps = _woken_sag(cold=False)
-    cold, _, _, _ = _woken_sag(cold=True)
+    Without it (cold) a box moves further. Measured: 9.7e-5 m warm, 1.8e-4 m cold with
+    "impulses" (the pile sleeps at 0.52 s, still rocking at 1 cm/s, which 30 passes do not
+    remove in a step; per-point friction: 1.4e-5 m warm, 2.3e-4 m cold), 5.1e-7 m warm and
+    1.3e-5 m cold with "soft".
+
+    The wake step finds the points the twin finds. With "impulses" those are the 80 points
+    kept; "soft" collides once a step, at the step's start, and its pile still rocks at
+    ~1e-6 rad with a period of two steps when it falls asleep: the incident corners that lie
+    on a reference face's edge (equal boxes stacked exactly) are clipped on one side or the
+    other of it, so the four points of 4 of the 16 box–box faces change their ids every step
+    (measured: 16 keys, until about step 50 without sleep), and 64 of the 80 are found again."""
+    warm, held, world, steps = _woken_sag(cold=False, body_step=stage)
+    cold, _, _, _ = _woken_sag(cold=True, body_step=stage)
     assert len(held) == 80
-    assert np.array_equal(world.body_impulses.keys, held)  # the same points, found again
-    twin = _world(sleep=False)
+    twin = _world(sleep=False, body_step=stage)
     boxes = _pile(twin)
     for _ in range(steps):
         twin.step(DT)
     twin.bodies.velocity[:] = 0.0
     twin.bodies.angular_velocity[:] = 0.0
     assert warm == _largest_move(twin, boxes)
+    assert np.array_equal(world.body_impulses.keys, twin.body_impulses.keys)
+    found = np.isin(held, world.body_impulses.keys).sum()
+    assert found >= (80 if stage == "impulses" else 64)  # the same points, found again
     assert cold > 1.5 * warm
 
 
