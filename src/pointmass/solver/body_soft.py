@@ -588,6 +588,9 @@ def contact_step(nb, substeps, h, gravity, soft, static, threshold, pos, quat, v
                                   mass_t2, mass_tw, sep, inv_mass, vel, ang, impulse, peak,
                                   relv, gap, jt1, jt2, jtw, arm, farm, inv_h, True,
                                   FRICTION_IN_SOLVE, soft, static, SOLVE_PASSES, TOLERANCE)
+            # friction within the solve's cone, in this pose (``soft_energy``)
+            soft_energy.friction_cone(start, ca, cb, n, t1, t2, fmu, radius, mass_n, inv_mass,
+                                      vel, ang, impulse, jt1, jt2, jtw, farm)
         bad = integrate_positions(pos, quat, vel, ang, inv_inertia, inv_i, h, awake)
         if bad >= 0:
             return passes, deepest, 2, bad
@@ -722,6 +725,10 @@ def step(view, bodies, contacts: BodyContacts, acceleration: np.ndarray,
         if jointed:
             passes += joint_soft.solve(v, joints, jr, False, (lambda: _pass(
                 v, c, r, inv_h, True, soft, static)) if c.count else None)
+        if c.count:  # friction within the solve's cone, in this pose (``soft_energy``)
+            soft_energy.friction_cone(r.start, c.a, c.b, c.normal, r.t1, r.t2, r.fmu, r.radius,
+                                      r.mass_n, v.inv_mass, v.velocity, v.angular_velocity,
+                                      r.impulse, r.jt1, r.jt2, r.jtw, r.farm)
         bad = integrate_positions(v.position, v.orientation, v.velocity, v.angular_velocity,
                                   v.inv_inertia, v.inv_inertia_world, h, awake)
         if bad >= 0:

@@ -94,6 +94,63 @@ def limit_bounce(e0, absorbed, v0, w0, i0, vel, ang, impulse, quat, inv_mass, in
     return s
 
 
+@njit(cache=True, nogil=True)
+def friction_cone(start, ca, cb, n, t1, t2, fmu, radius, mass_n, inv_mass, vel, ang, impulse,
+                  jt1, jt2, jtw, farm):
+    """After the soft solve, before the drift: each manifold's friction and twist brought into
+    the cone of the normal impulses the solve left, μ·Σλ and μ·ρ·Σλ (the relax's own limits),
+    what is taken off applied at this pose's arms, as the warm start applied it. Returns the
+    manifolds clamped.
+
+    The soft solve does not revise friction (``FRICTION_IN_SOLVE``), so a warm start of
+    friction whose points now separate stayed in the velocities through the drift, and the
+    relax took it off at the arms and inertia of the pose after it: not the impulse the warm
+    start gave, and in force-free random scenes (benchmarks/rigid_fuzz.py) the step gained
+    up to +2.9 % (seed 38: a box spinning off the ground, warm started with 8.4 × the
+    kinetic energy). Clamped here, in the pose it was applied in, it is taken back exactly
+    (module docstring: 27 of 100 scenes gained, 2 with this)."""
+    count = 0
+    for k in range(t1.shape[0]):
+        if fmu[k] <= 0.0:
+            continue
+        s0 = start[k]
+        total = 0.0
+        for c in range(s0, start[k + 1]):
+            if mass_n[c] != 0.0:  # as ``body_soft.soft_pass`` counts it
+                total += impulse[c]
+        limit = fmu[k] * total
+        d1 = 0.0
+        d2 = 0.0
+        size = math.sqrt(jt1[k] * jt1[k] + jt2[k] * jt2[k])
+        if size > limit:
+            f = limit / size
+            d1 = jt1[k] * f - jt1[k]
+            d2 = jt2[k] * f - jt2[k]
+            jt1[k] += d1
+            jt2[k] += d2
+        dw = 0.0
+        twist = limit * radius[k]
+        if abs(jtw[k]) > twist:
+            dw = min(max(jtw[k], -twist), twist) - jtw[k]
+            jtw[k] += dw
+        if d1 == 0.0 and d2 == 0.0 and dw == 0.0:
+            continue
+        count += 1
+        a = ca[s0]
+        b = cb[s0]
+        wa = inv_mass[a]
+        wb = inv_mass[b] if b >= 0 else 0.0
+        for u in range(3):
+            p = d1 * t1[k, u] + d2 * t2[k, u]
+            vel[a, u] += wa * p
+            ang[a, u] += d1 * farm[k, 12 + u] + d2 * farm[k, 15 + u] + dw * farm[k, 24 + u]
+            if b >= 0:
+                vel[b, u] -= wb * p
+                ang[b, u] -= d1 * farm[k, 18 + u] + d2 * farm[k, 21 + u] \
+                    + dw * farm[k, 27 + u]
+    return count
+
+
 class Budget:
     """One step's energy bookkeeping for ``body_soft.step``'s loop with joints (the loop
     without them, ``body_soft.contact_step``, keeps the same two sums itself): the energy each
