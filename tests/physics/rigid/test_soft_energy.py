@@ -115,8 +115,8 @@ def test_limit_scenery_scales_only_bodies_alone_on_scenery_to_their_start_energy
     soft_energy.body_energies(np.ones(4, np.bool_), b.velocity, b.angular_velocity,
                               b.orientation, b.inv_mass, b.inv_inertia, start)
     assert start[0] == pytest.approx(soft_energy.kinetic_energy(b) / 4, rel=1e-14)
-    b.velocity *= 1.01
-    b.angular_velocity *= 1.01
+    b.velocity[:] *= 1.01
+    b.angular_velocity[:] *= 1.01
     v, w = b.velocity.copy(), b.angular_velocity.copy()
     assert soft_energy.limit_scenery(alone, start, b.velocity, b.angular_velocity,
                                      b.orientation, b.inv_mass, b.inv_inertia) == 1
