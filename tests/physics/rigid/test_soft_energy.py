@@ -45,39 +45,89 @@ def _compiled():
     fuzz.run(_scenes(1, force_free=True)[0], steps=2, **SOFT)  # compile before anything times
 
 
-def _gaining(seeds: list[int], steps: int) -> list[int]:
-    """The seeds whose scene had a step gaining > 1e-9 of its kinetic energy."""
-    gaining = []
+def _gaining(seeds: list[int], steps: int) -> dict[int, float]:
+    """The seeds whose scene had a step gaining > 1e-9 of its kinetic energy, with the largest
+    gain of a step."""
+    gaining = {}
     for seed in seeds:
         o = fuzz.run(seed, steps, **SOFT)
         assert o.force_free
         assert o.refused is None, f"seed {seed}: {o.refused}"
         assert o.explosion is None, f"seed {seed}: {o.speed:.3g} m/s at step {o.explosion}"
         if o.gain is not None:
-            gaining.append(seed)
+            gaining[seed] = o.worst_gain
     return gaining
 
 
-#: Force-free joint-free scenes with a step gaining > 1e-9 of the kinetic energy. Issue 30
-#: asks for none; a ratchet at the measured count (``solver/soft_energy.py`` says what is
-#: left). Quick: the first 100 such scenes (seeds 0–753), 40 steps: 27, 3 of them > 1e-3, the
-#: worst step +2.9 %. (Warm starting across steps only the points that touch, without
-#: friction, gave 4, but the 30-box tower walked 32 cm: taken out.)
-QUICK_GAINING = 27
-#: ... the 37 of seeds 0–299, 300 steps: 15, one > 1e-3 (+2.9 %); before the restitution
-#: bound 15, six > 1e-3, the worst step +62 %.
-SLOW_GAINING = 15
+# Force-free joint-free scenes with a step gaining > 1e-9 of the kinetic energy: issue 30 asks
+# for none. Measured: none of the first 100 such scenes (seeds 0–753, 40 steps) nor of the 37
+# of seeds 0–299 at 300 steps. Before ``soft_energy.friction_cone``: 27 of 100 (3 > 1e-3, the
+# worst step +2.9 %) and 15 of 37; with it, before ``soft_energy.limit_scenery``: 2 of 100
+# (+1.2e-7) and 2 of 37 (+6.3e-4).
 
 
-def test_force_free_random_scenes_energy_gains_ratchet():
+def test_force_free_random_scenes_gain_no_energy():
     gaining = _gaining(_scenes(100, force_free=True), steps=40)
-    assert len(gaining) <= QUICK_GAINING, gaining
+    assert not gaining, gaining
 
 
 @pytest.mark.slow
-def test_force_free_random_scenes_energy_gains_ratchet_300_steps():
+def test_force_free_random_scenes_gain_no_energy_300_steps():
     gaining = _gaining(_scenes(37, force_free=True), steps=fuzz.STEPS)  # seeds 0–299
-    assert len(gaining) <= SLOW_GAINING, gaining
+    assert not gaining, gaining
+
+
+def test_friction_warm_started_on_separating_points_gives_no_energy():
+    # rigid_fuzz seed 38, step 10: a box (spinning, 47 m/s) leaves the ground the step after
+    # it struck it; the warm start gives its points 8.4 × its kinetic energy, friction
+    # included. The soft solve lets the normals go; the friction used to ride through the
+    # drift and be taken off by the relax in the next pose: +2.9 % in that step. Clamped to
+    # the solve's cone in the pose it was given in, no step of the scene gains.
+    o = fuzz.run(38, 40, **SOFT)
+    assert o.force_free and o.refused is None
+    assert o.gain is None, f"step {o.gain} gained {o.worst_gain:.3g}"
+
+
+def test_body_on_scenery_gains_no_energy_from_its_turning_inertia():
+    # rigid_fuzz seed 297, step 275: a box on the walls alone, its contacts' arms fixed; the
+    # soft solve's push-out, held through the drift, turned it and its inertia, and the relax
+    # took the push back at I⁻¹ of the new pose: +6.3e-4 of the kinetic energy in the step
+    # (``soft_energy.limit_scenery``). Now no step of the 300 gains.
+    o = fuzz.run(297, fuzz.STEPS, **SOFT)
+    assert o.force_free and o.refused is None
+    assert o.gain is None, f"step {o.gain} gained {o.worst_gain:.3g}"
+
+
+def test_limit_scenery_scales_only_bodies_alone_on_scenery_to_their_start_energy():
+    import numpy as np
+
+    from pointmass.solver import soft_energy
+
+    # rows: body 0 on scenery; bodies 1 and 2 touch each other, 2 also scenery; 3 touches none
+    alone = soft_energy.scenery_only(4, np.array([0, 1, 2]), np.array([-1, 2, -1]))
+    assert alone.tolist() == [True, False, False, False]
+    world = pm.World(gravity=(0.0, 0.0, 0.0))
+    for k in range(4):
+        world.add_body(Box((0.6, 0.2, 0.4)), (3.0 * k, 0.0, 0.0), (0.9, 0.3, 0.2, 0.1),
+                       mass=2.0, velocity=(1.0, 2.0, 3.0), angular_velocity=(3.0, -1.0, 2.0))
+    b = world.bodies
+    start = np.zeros(4)
+    soft_energy.body_energies(np.ones(4, np.bool_), b.velocity, b.angular_velocity,
+                              b.orientation, b.inv_mass, b.inv_inertia, start)
+    assert start[0] == pytest.approx(soft_energy.kinetic_energy(b) / 4, rel=1e-14)
+    b.velocity[:] *= 1.01
+    b.angular_velocity[:] *= 1.01
+    v, w = b.velocity.copy(), b.angular_velocity.copy()
+    assert soft_energy.limit_scenery(alone, start, b.velocity, b.angular_velocity,
+                                     b.orientation, b.inv_mass, b.inv_inertia) == 1
+    after = np.zeros(4)
+    soft_energy.body_energies(np.ones(4, np.bool_), b.velocity, b.angular_velocity,
+                              b.orientation, b.inv_mass, b.inv_inertia, after)
+    assert after[0] == pytest.approx(start[0], rel=1e-14)
+    assert np.allclose(b.velocity[0], v[0] / 1.01) and np.allclose(b.angular_velocity[0],
+                                                                     w[0] / 1.01)
+    assert np.array_equal(b.velocity[1:], v[1:]) and np.array_equal(b.angular_velocity[1:],
+                                                                    w[1:])
 
 
 #: Largest fraction of joint-free scenes (with and without gravity) that may end a step with
@@ -152,3 +202,70 @@ def test_soft_step_bounce_returns_e_squared_of_its_height(shape, height):
     apex, contact = drop(shape, height, **SOFT)
     assert contact == pytest.approx(0.25, rel=0.03)
     assert apex == pytest.approx(0.25, rel=0.04)
+
+
+def test_friction_cone_takes_back_unsupported_friction_exactly():
+    # Two tilted boxes, one resting on the other with gravity off, their inertia not a
+    # sphere's: a warm start of friction and twist with no normal impulse under it, then the
+    # cone (μ·Σλ = 0) takes all of it back in the same pose: velocities, both momenta and
+    # the kinetic energy as before the warm start, to round-off.
+    import numpy as np
+
+    from pointmass.solver import body_soft as bs
+    from pointmass.solver import soft_energy
+
+    world = pm.World(gravity=(0.0, 0.0, 0.0), **SOFT)
+    q = (0.99, 0.1, 0.05, 0.02)
+    world.add_body(Box((0.6, 0.2, 0.4)), (0.0, 0.0, 0.0), q, mass=2.0, friction=0.7)
+    world.add_body(Box((0.3, 0.25, 0.5)), (0.1, 0.43, 0.05), q, mass=3.0, friction=0.7,
+                   velocity=(0.3, -0.1, 0.2), angular_velocity=(1.0, -2.0, 0.5))
+    world.step(DT)
+    b = world.bodies
+    c = world.body_contacts
+    assert c.count >= 3
+    r = bs._Rows(c)
+    bs._refresh(b, c, r)
+    r.impulse[:] = 0.0
+    r.jt1[:], r.jt2[:], r.jtw[:] = 5.0, -3.0, 0.7
+    v0, w0 = b.velocity.copy(), b.angular_velocity.copy()
+    energy = soft_energy.kinetic_energy(b)
+    bs.warm_start(r.start, c.a, c.b, c.normal, r.t1, r.t2, b.inv_mass, b.velocity,
+                  b.angular_velocity, r.impulse, r.jt1, r.jt2, r.jtw, r.arm, r.farm)
+    assert np.abs(b.velocity - v0).max() > 1.0  # the warm start did move them
+    clamped = soft_energy.friction_cone(r.start, c.a, c.b, c.normal, r.t1, r.t2, r.fmu,
+                                        r.radius, r.mass_n, b.inv_mass, b.velocity,
+                                        b.angular_velocity, r.impulse, r.jt1, r.jt2, r.jtw,
+                                        r.farm)
+    assert clamped == len(r.jt1)
+    assert not (r.jt1.any() or r.jt2.any() or r.jtw.any())
+    assert np.allclose(b.velocity, v0, rtol=0.0, atol=1e-13)
+    assert np.allclose(b.angular_velocity, w0, rtol=0.0, atol=1e-13)
+    assert soft_energy.kinetic_energy(b) == pytest.approx(energy, rel=1e-13)
+
+
+def test_friction_cone_leaves_friction_inside_it():
+    # A box resting on the ground under gravity: its friction is within μ·Σλ, so the cone
+    # changes nothing (the towers' and the pyramid's friction is left to the relax).
+    import numpy as np
+
+    from pointmass.solver import body_soft as bs
+    from pointmass.solver import soft_energy
+
+    world = pm.World(gravity=(0.0, -G, 0.0), **SOFT)
+    world.add(pm.Ground(friction=0.5))
+    world.add_body(Box((0.5, 0.5, 0.5)), (0.0, 0.5, 0.0), mass=1.0, friction=0.5)
+    world.step(DT)
+    b = world.bodies
+    c = world.body_contacts
+    r = bs._Rows(c)
+    bs._refresh(b, c, r)
+    r.impulse[:] = 1.0
+    r.jt1[:], r.jt2[:], r.jtw[:] = 1.0, -1.0, 0.1  # |jt| 1.41 within μ·Σλ = 2
+    v0, w0 = b.velocity.copy(), b.angular_velocity.copy()
+    clamped = soft_energy.friction_cone(r.start, c.a, c.b, c.normal, r.t1, r.t2, r.fmu,
+                                        r.radius, r.mass_n, b.inv_mass, b.velocity,
+                                        b.angular_velocity, r.impulse, r.jt1, r.jt2, r.jtw,
+                                        r.farm)
+    assert clamped == 0
+    assert (r.jt1 == 1.0).all() and (r.jt2 == -1.0).all() and (r.jtw == 0.1).all()
+    assert np.array_equal(b.velocity, v0) and np.array_equal(b.angular_velocity, w0)
