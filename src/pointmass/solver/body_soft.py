@@ -514,12 +514,14 @@ def _pass(b, c: BodyContacts, r: _Rows, inv_h: float, use_bias: bool, soft, stat
 @njit(cache=True, nogil=True)
 def contact_step(nb, substeps, h, gravity, soft, static, threshold, pos, quat, vel, ang,
                  inv_mass, inv_inertia, inv_i, awake, lin_d, ang_d, acc, ca, cb, n, r0a, r0b,
-                 depth0, mu, e, impulse, kept, round_a, round_b):
+                 depth0, mu, e, impulse, kept, round_a, round_b, total):
     """The whole soft step of a world without joints in one compiled call (issue 26: a small
     world pays no Python per substep; measured, the 10-box tower's stage made 38 kernel calls
     a step from Python). ``impulse`` (M,) and ``kept`` (M, 3) come in with the recalled warm
-    start and leave with what to keep. The same kernels, in the same order, as ``step``'s
-    loop with joints: the results are bit for bit those of that loop.
+    start and leave with what to keep; ``total`` (M,) leaves with the normal impulse each point
+    gave over the step (Σ of the substeps' impulses, then the bounce). The same kernels, in
+    the same order, as ``step``'s loop with joints: the results are bit for bit those of that
+    loop.
 
     Returns (passes, deepest overlap, error, body): error 1 is a spin that is not finite after
     a kick, 2 a body that is not finite after a drift (``body`` names it), 0 none."""
@@ -573,6 +575,7 @@ def contact_step(nb, substeps, h, gravity, soft, static, threshold, pos, quat, v
     still = np.zeros((nb, 3))  # no forces or torques in the later kicks
     passes = 0
     deepest = 0.0
+    total[:] = 0.0
     for i in range(substeps):
         if i > 0:
             bad = kick(nb, vel, ang, still, still, inv_mass, inv_inertia, inv_i, lin_d, ang_d,
@@ -601,6 +604,8 @@ def contact_step(nb, substeps, h, gravity, soft, static, threshold, pos, quat, v
                                   soft, static, RELAX_PASSES, TOLERANCE)
             if bouncy:
                 absorbed += begun - _kinetic_energy(vel, ang, quat, inv_mass, inv_inertia)
+            for c in range(m):  # the substep's warm start and passes gave impulse[c] in all
+                total[c] += impulse[c]
     if m:
         # the next step is warm started with what held the bodies, not with the bounce (as
         # ``step``'s loop: a bounce warm started on a point that now separates gained energy)
@@ -614,6 +619,8 @@ def contact_step(nb, substeps, h, gravity, soft, static, threshold, pos, quat, v
         if bouncy:
             soft_energy.limit_bounce(e0, absorbed, v0, w0, held, vel, ang, impulse, quat,
                                      inv_mass, inv_inertia)
+        for c in range(m):  # the bounce's own impulse
+            total[c] += impulse[c] - held[c]
         impulse[:] = held
         bm.split_friction(start, n, t1, t2, jt1, jt2, jtw, kept)
     return passes, deepest, 0, -1
@@ -641,7 +648,7 @@ def _contact_step(v, b, c: BodyContacts, acceleration, history: ImpulseHistory, 
         b.count, substeps, h, gravity, soft, static, threshold, v.position, v.orientation,
         v.velocity, v.angular_velocity, v.inv_mass, v.inv_inertia, v.inv_inertia_world,
         v.awake, b.linear_damping, b.angular_damping, acceleration, c.a, c.b, c.normal, c.r_a,
-        c.r_b, c.depth, c.friction, c.restitution, impulse, kept, round_a, round_b)
+        c.r_b, c.depth, c.friction, c.restitution, impulse, kept, round_a, round_b, c.impulse)
     if error == 1:
         from ..rigid.step import spin_error
         raise spin_error(b, int(bad), h)
@@ -696,6 +703,7 @@ def step(view, bodies, contacts: BodyContacts, acceleration: np.ndarray,
     else:
         history.clear()
     passes = 0
+    total = np.zeros(c.count)  # each point's impulse over the step (``BodyContacts.impulse``)
     jr = joint_soft.prepare(v, joints, h) if jointed else None
     still = np.zeros((nb, 3))  # no forces or torques in the later kicks
     # restitution returns at most what the contacts absorbed (``soft_energy``): counted where
@@ -739,6 +747,8 @@ def step(view, bodies, contacts: BodyContacts, acceleration: np.ndarray,
                 v, c, r, inv_h, False, soft, static)) if c.count else None)
         if budget is not None and c.count:
             budget.relaxed(v)
+        if c.count:  # the substep's warm start and passes gave r.impulse in all
+            total += r.impulse
     out.velocity_passes = passes
     if c.count:
         def bounce() -> None:
@@ -755,6 +765,7 @@ def step(view, bodies, contacts: BodyContacts, acceleration: np.ndarray,
             budget.bounce(v, r.impulse, bounce)
         else:
             bounce()
+        c.impulse[:] = total + (r.impulse - held)  # and the bounce's own
         kept = np.empty((c.count, 3))
         bm.split_friction(r.start, c.normal, r.t1, r.t2, r.jt1, r.jt2, r.jtw, kept)
         history.keep(c.key, held, kept)

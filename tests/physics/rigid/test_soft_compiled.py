@@ -39,7 +39,8 @@ def _run(compiled: bool, monkeypatch) -> tuple:
             world.step(1 / 60)
     b, p = world.bodies, world.particles
     return (b.position.copy(), b.orientation.copy(), b.velocity.copy(),
-            b.angular_velocity.copy(), p.position.copy(), p.velocity.copy())
+            b.angular_velocity.copy(), p.position.copy(), p.velocity.copy(),
+            world.body_contacts.impulse.copy())
 
 
 def test_the_compiled_step_and_the_loop_give_the_same_bits(monkeypatch):
@@ -47,5 +48,5 @@ def test_the_compiled_step_and_the_loop_give_the_same_bits(monkeypatch):
     loop = _run(False, monkeypatch)
     assert fused[0][:, 1].max() < 1.0  # the bodies fell and landed: the contacts acted
     for name, a, b in zip(("position", "orientation", "velocity", "spin", "particle position",
-                           "particle velocity"), fused, loop, strict=True):
+                           "particle velocity", "step impulses"), fused, loop, strict=True):
         assert np.array_equal(a, b), name
