@@ -554,6 +554,7 @@ class World:
         h = dt / body_soft.SUBSTEPS
         kept, acc = self._apply_body_forces(dt)
         p = self.particles
+        integrated = p.awake.copy()  # the particles the integration moved (and kicked by dt)
         self._force_dt = dt
         try:  # the first kicks (here, and of woken bodies) give the forces of the whole dt
             self._kick(h, b.awake)
@@ -562,9 +563,7 @@ class World:
             view = b
             if packed is not None:
                 view = packed
-                # the particles' own step gave them the whole dt's kick: keep one substep's
-                sel = packed.selected
-                packed.velocity[b.count:] -= p.acceleration[sel] * (dt - h)
+                self._first_particle_kick(packed, integrated, h, dt, acc)
             rows = body_soft.step(view, b, self.body_contacts, acc, self.body_impulses, dt,
                                   self.solver.restitution_threshold, self._gravity,
                                   self.joints if self.joints else None)
@@ -577,6 +576,30 @@ class World:
             p.velocity[packed.selected] = packed.velocity[b.count:]
         self._body_rows = rows
         return rows
+
+    def _first_particle_kick(self, packed, integrated: np.ndarray, h: float, dt: float,
+                             acc: np.ndarray) -> None:
+        """The soft step's particle rows start, as its bodies do, with one substep's kick of
+        h: the integration gave those it moved the whole dt's (kept: one substep's); one
+        that a body's row woke since (``find_body_rows``) was not integrated: it gets its h
+        (at g + F/m, what the integration would have given it at rest); a sleeper in the view
+        (its rows left out) gets none and stays out of the substeps (not awake in the view:
+        with the whole view kicked, a particle asleep on a box rose 1 mm in its first step
+        asleep, which woke it again, for ever)."""
+        n = self.bodies.count
+        p = self.particles
+        sel = packed.selected
+        awake = p.awake[sel]
+        packed.awake[n:] = awake
+        moved = integrated[sel]
+        packed.velocity[n:][moved] -= p.acceleration[sel[moved]] * (dt - h)
+        woken = awake & ~moved
+        if woken.any():
+            i = sel[woken]
+            a = self._folded[1] + p.force[i] * p.inv_mass[i, None]
+            p.acceleration[i] = a
+            acc[n:][woken] = a
+            packed.velocity[n:][woken] += a * h
 
     def _apply_body_forces(self, dt: float):
         """Let the body force generators add to the user's forces for this substep, wake the

@@ -243,12 +243,13 @@ def refresh(start, ca, cb, n, la, lb, r0a, r0b, depth0, mu, inv_mass, inv_i, pos
 def kick(nb, vel, ang, force, torque, inv_mass, inv_inertia, inv_i, lin_d, ang_d, g, h, awake,
          acc):
     """The velocity half of a substep: the bodies' kick (``integrate_velocities``; returns the
-    first body whose spin is not finite, or -1), and each particle row after them (index ≥
-    ``nb``) its own acceleration ``acc``."""
+    first body whose spin is not finite, or -1), and each awake particle row after them
+    (index ≥ ``nb``) its own acceleration ``acc`` (a sleeping one in the view has no rows and
+    is not integrated, as a sleeping body)."""
     bad = integrate_velocities(vel[:nb], ang[:nb], force, torque, inv_mass[:nb],
                                inv_inertia[:nb], inv_i[:nb], lin_d, ang_d, g, h, awake[:nb])
     for i in range(nb, vel.shape[0]):
-        if inv_mass[i] > 0.0:
+        if inv_mass[i] > 0.0 and awake[i]:
             for u in range(3):
                 vel[i, u] += h * acc[i, u]
     return bad
