@@ -88,7 +88,6 @@ class World:
         #: The longest still-time of an awake particle after the last step [s].
         self._longest_still = 0.0
         self._plinks: np.ndarray | None = None
-        self._force_dt = 0.0  # how long the next kicks apply forces (``_kick``)
         #: The warm start of sleeping bodies' contact points, given back when they wake.
         self.sleeping_impulses = sleeping.SleepingImpulses()
         #: Body pairs (K, 2) that must share an island (joints): they sleep and wake together.
@@ -506,7 +505,6 @@ class World:
         b = self.bodies
         kept, acc = self._apply_body_forces(dt)
         p = self.particles
-        self._force_dt = dt
         try:  # the kick, and that of bodies woken while finding contacts, read the forces
             self._kick(dt, b.awake)
             packed, acc = wake.find_body_rows(self, dt, dt, acc)
@@ -555,8 +553,7 @@ class World:
         kept, acc = self._apply_body_forces(dt)
         p = self.particles
         integrated = p.awake.copy()  # the particles the integration moved (and kicked by dt)
-        self._force_dt = dt
-        try:  # the first kicks (here, and of woken bodies) give the forces of the whole dt
+        try:  # the first kicks (here, and of woken bodies); ``body_soft`` gives the others
             self._kick(h, b.awake)
             packed, acc = wake.find_body_rows(self, h, dt, acc)
             self._packed = packed  # the islands read its particles (``_fall_asleep``)
@@ -622,16 +619,11 @@ class World:
         return kept, np.where(w > 0.0, self._gravity + b.force * w, 0.0)
 
     def _kick(self, dt: float, which: np.ndarray) -> None:
-        """The velocity half of the bodies' integration, for the bodies of mask ``which``:
-        gravity and damping over ``dt``; forces and torques over ``self._force_dt`` (the whole
-        step's for the soft step's first kick, so each force acts once, at the points and
-        poses it was computed at: a body spring spread over the substeps would push bodies
-        that have moved, and change Σ x × p + Iω by 3e-3 in 2.5 s)."""
+        """The velocity half of the bodies' integration over ``dt``, for the bodies of mask
+        ``which``: gravity, forces, torques and damping (the soft step's first substep; its
+        later substeps' kicks are ``body_soft.kick``, with the same forces)."""
         b = self.bodies
-        scale = self._force_dt / dt
-        force, torque = (b.force, b.torque) if scale == 1.0 else (b.force * scale,
-                                                                   b.torque * scale)
-        spun = integrate_velocities(b.velocity, b.angular_velocity, force, torque,
+        spun = integrate_velocities(b.velocity, b.angular_velocity, b.force, b.torque,
                                     b.inv_mass, b.inv_inertia, b.inv_inertia_world,
                                     b.linear_damping, b.angular_damping, self._gravity, dt, which)
         if spun >= 0:
