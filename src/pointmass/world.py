@@ -579,7 +579,7 @@ class World:
         """The soft step's particle rows start, as its bodies do, with one substep's kick of
         h: the integration gave those it moved the whole dt's (kept: one substep's); one
         that a body's row woke since (``find_body_rows``) was not integrated: it gets its h
-        (at g + F/m, what the integration would have given it at rest); a sleeper in the view
+        (at g + F/m: what the integration gives a particle at rest); a sleeper in the view
         (its rows left out) gets none and stays out of the substeps (not awake in the view:
         with the whole view kicked, a particle asleep on a box rose 1 mm in its first step
         asleep, which woke it again, for ever)."""
@@ -596,7 +596,8 @@ class World:
             a = self._folded[1] + p.force[i] * p.inv_mass[i, None]
             p.acceleration[i] = a
             acc[n:][woken] = a
-            packed.velocity[n:][woken] += a * h
+            # at rest until now: v = a·h, then the particle's damping over h (as integrated)
+            packed.velocity[n:][woken] = a * h * (p.damping[i] ** h)[:, None]
 
     def _apply_body_forces(self, dt: float):
         """Let the body force generators add to the user's forces for this substep, wake the
