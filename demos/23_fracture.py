@@ -3,8 +3,8 @@
 An 8 m, 100 kg block stands on the ground; a 0.25 m, 5 kg ball is thrown at it from
 (0, 5, 20) with Cyclone's random velocity (±4 binomial sideways, U(1, 6) up, −20 m/s along z;
 seeded). After each step the demo reads the normal impulse the solver gave the ball–block
-contact (``world.body_contacts`` keys → ``world.body_impulses``); above ``break_impulse`` the
-block splits: the big body becomes one of its half-size octants in place
+contact over the step (``world.body_contacts.impulse``); above ``break_impulse`` the block
+splits: the big body becomes one of its half-size octants in place
 (``Bodies.set_shape`` gives it the octant's mass and inertia) and the seven others are added,
 each moving with the block's velocity at its centre, v + ω × r, plus an outward push. The
 parts fall and come to rest on the ground. Cyclone splits around the contact point with a
@@ -89,15 +89,12 @@ KEYS = {"SPACE": ("Reassemble the block and throw a ball", throw),
 
 
 def hit_impulse(world: World, a: int, b: int) -> float:
-    """Σ of the normal impulses [N·s] the solver applied last step between bodies a and b."""
+    """Σ of the normal impulses [N·s] the solver applied last step between bodies a and b
+    (``BodyContacts.impulse``: the whole step's, not the warm start of ``body_impulses``,
+    which with the soft step is one substep's)."""
     c = world.body_contacts
     pair = ((c.a == a) & (c.b == b)) | ((c.a == b) & (c.b == a))
-    if not pair.any():
-        return 0.0
-    keys = c.key[pair]
-    normal, tangent = np.zeros(len(keys)), np.zeros((len(keys), 3))
-    world.body_impulses.recall(keys, normal, tangent)
-    return float(normal.sum())
+    return float(c.impulse[pair].sum())
 
 
 def split(scene: Scene, push: float) -> None:

@@ -131,8 +131,8 @@ def find_body_rows(world: World, h: float, dt: float, acc: np.ndarray):
                                         float(dt), out):
                 was = b.awake.copy()
                 wake_particles(world, out)
-                if (b.awake & ~was).any():
-                    world._kick(dt, b.awake & ~was)
+                if (b.awake & ~was).any():  # their first kick (h: the soft step's substep)
+                    world._kick(h, b.awake & ~was)
                 continue  # again, with the woken
             slot = c.a >= b.count
             reach = np.zeros(c.a.shape[0], np.bool_)

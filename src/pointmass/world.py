@@ -88,7 +88,6 @@ class World:
         #: The longest still-time of an awake particle after the last step [s].
         self._longest_still = 0.0
         self._plinks: np.ndarray | None = None
-        self._force_dt = 0.0  # how long the next kicks apply forces (``_kick``)
         #: The warm start of sleeping bodies' contact points, given back when they wake.
         self.sleeping_impulses = sleeping.SleepingImpulses()
         #: Body pairs (K, 2) that must share an island (joints): they sleep and wake together.
@@ -506,7 +505,6 @@ class World:
         b = self.bodies
         kept, acc = self._apply_body_forces(dt)
         p = self.particles
-        self._force_dt = dt
         try:  # the kick, and that of bodies woken while finding contacts, read the forces
             self._kick(dt, b.awake)
             packed, acc = wake.find_body_rows(self, dt, dt, acc)
@@ -554,17 +552,15 @@ class World:
         h = dt / body_soft.SUBSTEPS
         kept, acc = self._apply_body_forces(dt)
         p = self.particles
-        self._force_dt = dt
-        try:  # the first kicks (here, and of woken bodies) give the forces of the whole dt
+        integrated = p.awake.copy()  # the particles the integration moved (and kicked by dt)
+        try:  # the first kicks (here, and of woken bodies); ``body_soft`` gives the others
             self._kick(h, b.awake)
             packed, acc = wake.find_body_rows(self, h, dt, acc)
             self._packed = packed  # the islands read its particles (``_fall_asleep``)
             view = b
             if packed is not None:
                 view = packed
-                # the particles' own step gave them the whole dt's kick: keep one substep's
-                sel = packed.selected
-                packed.velocity[b.count:] -= p.acceleration[sel] * (dt - h)
+                self._first_particle_kick(packed, integrated, h, dt, acc)
             rows = body_soft.step(view, b, self.body_contacts, acc, self.body_impulses, dt,
                                   self.solver.restitution_threshold, self._gravity,
                                   self.joints if self.joints else None)
@@ -577,6 +573,31 @@ class World:
             p.velocity[packed.selected] = packed.velocity[b.count:]
         self._body_rows = rows
         return rows
+
+    def _first_particle_kick(self, packed, integrated: np.ndarray, h: float, dt: float,
+                             acc: np.ndarray) -> None:
+        """The soft step's particle rows start, as its bodies do, with one substep's kick of
+        h: the integration gave those it moved the whole dt's (kept: one substep's); one
+        that a body's row woke since (``find_body_rows``) was not integrated: it gets its h
+        (at g + F/m: what the integration gives a particle at rest); a sleeper in the view
+        (its rows left out) gets none and stays out of the substeps (not awake in the view:
+        with the whole view kicked, a particle asleep on a box rose 1 mm in its first step
+        asleep, which woke it again, for ever)."""
+        n = self.bodies.count
+        p = self.particles
+        sel = packed.selected
+        awake = p.awake[sel]
+        packed.awake[n:] = awake
+        moved = integrated[sel]
+        packed.velocity[n:][moved] -= p.acceleration[sel[moved]] * (dt - h)
+        woken = awake & ~moved
+        if woken.any():
+            i = sel[woken]
+            a = self._folded[1] + p.force[i] * p.inv_mass[i, None]
+            p.acceleration[i] = a
+            acc[n:][woken] = a
+            # at rest until now: v = a·h, then the particle's damping over h (as integrated)
+            packed.velocity[n:][woken] = a * h * (p.damping[i] ** h)[:, None]
 
     def _apply_body_forces(self, dt: float):
         """Let the body force generators add to the user's forces for this substep, wake the
@@ -599,16 +620,11 @@ class World:
         return kept, np.where(w > 0.0, self._gravity + b.force * w, 0.0)
 
     def _kick(self, dt: float, which: np.ndarray) -> None:
-        """The velocity half of the bodies' integration, for the bodies of mask ``which``:
-        gravity and damping over ``dt``; forces and torques over ``self._force_dt`` (the whole
-        step's for the soft step's first kick, so each force acts once, at the points and
-        poses it was computed at: a body spring spread over the substeps would push bodies
-        that have moved, and change Σ x × p + Iω by 3e-3 in 2.5 s)."""
+        """The velocity half of the bodies' integration over ``dt``, for the bodies of mask
+        ``which``: gravity, forces, torques and damping (the soft step's first substep; its
+        later substeps' kicks are ``body_soft.kick``, with the same forces)."""
         b = self.bodies
-        scale = self._force_dt / dt
-        force, torque = (b.force, b.torque) if scale == 1.0 else (b.force * scale,
-                                                                   b.torque * scale)
-        spun = integrate_velocities(b.velocity, b.angular_velocity, force, torque,
+        spun = integrate_velocities(b.velocity, b.angular_velocity, b.force, b.torque,
                                     b.inv_mass, b.inv_inertia, b.inv_inertia_world,
                                     b.linear_damping, b.angular_damping, self._gravity, dt, which)
         if spun >= 0:

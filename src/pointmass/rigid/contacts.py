@@ -27,7 +27,16 @@ class BodyContacts:
         friction: Coulomb μ of the point, shape (M,).
         restitution: Coefficient of restitution, shape (M,).
         key: Identity across steps (``pointmass.keys``) for warm starting, shape (M,), int64.
+        impulse: The normal impulse [N·s] the body stage gave each point over the whole step,
+            shape (M,), filled after the solve (0 before): with the soft step the sum over its
+            substeps and the restitution (Box2D's ``totalNormalImpulse``), not the warm start
+            (``World.body_impulses`` keeps one substep's impulse, what the next step starts
+            from). A pair's Σ is the impulse of their collision this step.
     """
+
+    #: The per-row arrays (``trim`` and ``keep`` cut them all).
+    FIELDS = ("a", "b", "normal", "r_a", "r_b", "depth", "friction", "restitution", "key",
+              "impulse")
 
     def __init__(self, capacity: int = 0) -> None:
         self.count = 0
@@ -47,17 +56,18 @@ class BodyContacts:
         self.friction = np.empty(capacity)
         self.restitution = np.empty(capacity)
         self.key = np.empty(capacity, np.int64)
+        self.impulse = np.zeros(capacity)  # calloc: no pass over the room
 
     def trim(self, count: int) -> None:
         """Keep the first ``count`` rows as views (after a kernel wrote them)."""
         self.count = count
-        for name in ("a", "b", "normal", "r_a", "r_b", "depth", "friction", "restitution", "key"):
+        for name in self.FIELDS:
             setattr(self, name, getattr(self, name)[:count])
 
     def keep(self, rows: np.ndarray) -> None:
         """Keep only the rows where the mask ``rows`` (count,) is True, in order."""
         self.count = int(np.count_nonzero(rows))
-        for name in ("a", "b", "normal", "r_a", "r_b", "depth", "friction", "restitution", "key"):
+        for name in self.FIELDS:
             setattr(self, name, getattr(self, name)[rows])
 
     def __len__(self) -> int:

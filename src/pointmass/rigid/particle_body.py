@@ -179,7 +179,6 @@ class Packed:
         particles.position[self.selected] = self.position[n:]
 
 
-_FIELDS = ("a", "b", "normal", "r_a", "r_b", "depth", "friction", "restitution", "key")
 
 
 def add_particle_contacts(bodies, particles, dt: float, contacts: BodyContacts,
@@ -242,9 +241,10 @@ def add_particle_contacts(bodies, particles, dt: float, contacts: BodyContacts,
         "friction": out_mu[rows],
         "restitution": out_e[rows],
         "key": out_key[rows],
+        "impulse": np.zeros(got),
     }
     total = contacts.count + got
-    for name in _FIELDS:
+    for name in BodyContacts.FIELDS:
         setattr(contacts, name, np.concatenate([getattr(contacts, name), extra[name]]))
     contacts.count = total
     return packed

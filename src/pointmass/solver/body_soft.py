@@ -4,8 +4,11 @@
 Collision runs once per step; the rows it found are then solved over ``SUBSTEPS`` substeps of
 h = dt / ``SUBSTEPS``, each in the stage order of Box2D v3:
 
-1. kick — v += h·(g + F/m), ω += h·I⁻¹τ (the first substep's kick is the world's, before
-   collision, so the contacts see the velocities they will be solved with);
+1. kick — v += h·(g + F/m), ω += h·I⁻¹τ, with the forces and torques found once a step
+   (Box2D's ``b2IntegrateVelocitiesTask``: each substep gets h of them, so a body held up by
+   a force is at rest every substep; ``kick``), each force acting at the world point where it
+   was found; the first substep's kick is the world's, before collision, so the contacts see
+   the velocities they will be solved with;
 2. warm start — every point's accumulated normal impulse and every manifold's friction and
    twist (Catto 2006), again each substep;
 3. solve — one Gauss–Seidel pass with **soft** normal rows (``soft``: a spring–damper of
@@ -52,16 +55,14 @@ keep linear and angular momentum to 1.4e-13 (3.5e-3 with e 0, μ 0); a 1 m box d
 loses h·v/2 of height falling and rising, 2.7 % together, whatever the contact does; the
 contact's own part, apex after over apex before, is 0.248–0.257). The tests of the earlier
 stage's exact figures name their stage and are re-derived for this one (tests/physics/rigid).
-Not yet the default: the force generators' whole impulse is given in the first substep, so a
-body held up by a force ends each step at v = −(S−1)/2·g·h (a damped spring's equilibrium
-reads it); collision runs once a step, so fast spinning bodies end steps deep in others and
-rough boxes can pass a thin wall (the default stage's late projection catches those); the
-fracture demo reads one substep's impulse; and random jointed scenes still explode with it
-(``joint_soft``'s docstring has the counts). Force-free random scenes without joints gain no
-kinetic energy in a step (issue 30's 1e-9; ``soft_energy``: the restitution's budget, the
-friction warm start clamped to the solve's cone before the drift, bodies on scenery alone
-capped at their energy after the kick). Tried and taken out: warm starting across steps only
-the points that touch, without friction (the 30-box tower then walked 32 cm in 60 s).
+Not yet the default: collision runs once a step, so fast spinning bodies end steps deep in
+others and rough boxes can pass a thin wall (the default stage's late projection catches
+those); and random jointed scenes still explode with it (``joint_soft``'s docstring has the
+counts). Force-free random scenes without joints gain no kinetic energy in a step (issue 30's
+1e-9; ``soft_energy``: the restitution's budget, the friction warm start clamped to the
+solve's cone before the drift, bodies on scenery alone capped at their energy after the
+kick). Tried and taken out: warm starting across steps only the points that touch, without
+friction (the 30-box tower then walked 32 cm in 60 s).
 """
 
 from __future__ import annotations
@@ -247,15 +248,33 @@ def refresh(start, ca, cb, n, la, lb, r0a, r0b, depth0, mu, inv_mass, inv_i, pos
 
 
 @njit(cache=True, nogil=True)
-def kick(nb, vel, ang, force, torque, inv_mass, inv_inertia, inv_i, lin_d, ang_d, g, h, awake,
-         acc):
+def kick(nb, vel, ang, force, torque, start, pos, turn, inv_mass, inv_inertia, inv_i, lin_d,
+         ang_d, g, h, awake, acc):
     """The velocity half of a substep: the bodies' kick (``integrate_velocities``; returns the
-    first body whose spin is not finite, or -1), and each particle row after them (index ≥
-    ``nb``) its own acceleration ``acc``."""
-    bad = integrate_velocities(vel[:nb], ang[:nb], force, torque, inv_mass[:nb],
+    first body whose spin is not finite, or -1), and each awake particle row after them
+    (index ≥ ``nb``) its own acceleration ``acc`` (a sleeping one in the view has no rows and
+    is not integrated, as a sleeping body).
+
+    ``force`` and ``torque`` (about the centre) were found with the bodies at ``start``; each
+    force keeps acting at the world point where it was found, so a body whose centre has moved
+    by d since gets the torque τ − d × F (into ``turn``). Then every substep adds Σ (x × F + τ)
+    · h = the moment of the step's forces at their points, whatever the bodies did: a body
+    spring's equal and opposite pair keeps Σ x × p + Iω exactly. (With τ held while the centre
+    moves, the pair's two points of application are carried apart across its line of action:
+    two boxes on a damped spring, 2.5 s at dt 1/240, gained 3.3e-3 of angular momentum, |L|
+    1.27; 1e-13 this way.)"""
+    for i in range(nb):
+        fx, fy, fz = force[i, 0], force[i, 1], force[i, 2]
+        dx = pos[i, 0] - start[i, 0]
+        dy = pos[i, 1] - start[i, 1]
+        dz = pos[i, 2] - start[i, 2]
+        turn[i, 0] = torque[i, 0] - (dy * fz - dz * fy)
+        turn[i, 1] = torque[i, 1] - (dz * fx - dx * fz)
+        turn[i, 2] = torque[i, 2] - (dx * fy - dy * fx)
+    bad = integrate_velocities(vel[:nb], ang[:nb], force, turn, inv_mass[:nb],
                                inv_inertia[:nb], inv_i[:nb], lin_d, ang_d, g, h, awake[:nb])
     for i in range(nb, vel.shape[0]):
-        if inv_mass[i] > 0.0:
+        if inv_mass[i] > 0.0 and awake[i]:
             for u in range(3):
                 vel[i, u] += h * acc[i, u]
     return bad
@@ -521,12 +540,14 @@ def _pass(b, c: BodyContacts, r: _Rows, inv_h: float, use_bias: bool, soft, stat
 @njit(cache=True, nogil=True)
 def contact_step(nb, substeps, h, gravity, soft, static, threshold, pos, quat, vel, ang,
                  inv_mass, inv_inertia, inv_i, awake, lin_d, ang_d, acc, ca, cb, n, r0a, r0b,
-                 depth0, mu, e, impulse, kept, round_a, round_b):
+                 depth0, mu, e, impulse, kept, round_a, round_b, total, force, torque):
     """The whole soft step of a world without joints in one compiled call (issue 26: a small
     world pays no Python per substep; measured, the 10-box tower's stage made 38 kernel calls
     a step from Python). ``impulse`` (M,) and ``kept`` (M, 3) come in with the recalled warm
-    start and leave with what to keep. The same kernels, in the same order, as ``step``'s
-    loop with joints: the results are bit for bit those of that loop.
+    start and leave with what to keep; ``total`` (M,) leaves with the normal impulse each point
+    gave over the step (Σ of the substeps' impulses, then the bounce). The same kernels, in
+    the same order, as ``step``'s loop with joints: the results are bit for bit those of that
+    loop.
 
     Returns (passes, deepest overlap, error, body): error 1 is a spin that is not finite after
     a kick, 2 a body that is not finite after a drift (``body`` names it), 0 none."""
@@ -577,16 +598,18 @@ def contact_step(nb, substeps, h, gravity, soft, static, threshold, pos, quat, v
     absorbed = 0.0
     begun = 0.0
     inv_h = 1.0 / h
-    still = np.zeros((nb, 3))  # no forces or torques in the later kicks
+    start_pos = pos[:nb].copy()  # where the forces were found (``kick``)
+    turn = np.empty((nb, 3))
     passes = 0
     deepest = 0.0
     # a body on scenery alone leaves no substep with more energy than it began with
     alone = soft_energy.scenery_only(vel.shape[0], ca, cb)
     start_energy = np.zeros(vel.shape[0])
+    total[:] = 0.0
     for i in range(substeps):
         if i > 0:
-            bad = kick(nb, vel, ang, still, still, inv_mass, inv_inertia, inv_i, lin_d, ang_d,
-                       gravity, h, awake, acc)
+            bad = kick(nb, vel, ang, force, torque, start_pos, pos, turn, inv_mass,
+                       inv_inertia, inv_i, lin_d, ang_d, gravity, h, awake, acc)
             if bad >= 0:
                 return passes, deepest, 1, bad
         if bouncy:
@@ -618,6 +641,8 @@ def contact_step(nb, substeps, h, gravity, soft, static, threshold, pos, quat, v
                                       inv_inertia)
             if bouncy:
                 absorbed += begun - _kinetic_energy(vel, ang, quat, inv_mass, inv_inertia)
+            for c in range(m):  # the substep's warm start and passes gave impulse[c] in all
+                total[c] += impulse[c]
     if m:
         # the next step is warm started with what held the bodies, not with the bounce (as
         # ``step``'s loop: a bounce warm started on a point that now separates gained energy)
@@ -631,6 +656,8 @@ def contact_step(nb, substeps, h, gravity, soft, static, threshold, pos, quat, v
         if bouncy:
             soft_energy.limit_bounce(e0, absorbed, v0, w0, held, vel, ang, impulse, quat,
                                      inv_mass, inv_inertia)
+        for c in range(m):  # the bounce's own impulse
+            total[c] += impulse[c] - held[c]
         impulse[:] = held
         bm.split_friction(start, n, t1, t2, jt1, jt2, jtw, kept)
     return passes, deepest, 0, -1
@@ -658,7 +685,8 @@ def _contact_step(v, b, c: BodyContacts, acceleration, history: ImpulseHistory, 
         b.count, substeps, h, gravity, soft, static, threshold, v.position, v.orientation,
         v.velocity, v.angular_velocity, v.inv_mass, v.inv_inertia, v.inv_inertia_world,
         v.awake, b.linear_damping, b.angular_damping, acceleration, c.a, c.b, c.normal, c.r_a,
-        c.r_b, c.depth, c.friction, c.restitution, impulse, kept, round_a, round_b)
+        c.r_b, c.depth, c.friction, c.restitution, impulse, kept, round_a, round_b, c.impulse,
+        b.force, b.torque)
     if error == 1:
         from ..rigid.step import spin_error
         raise spin_error(b, int(bad), h)
@@ -677,9 +705,10 @@ def step(view, bodies, contacts: BodyContacts, acceleration: np.ndarray,
          history: ImpulseHistory, dt: float, threshold: float, gravity: np.ndarray,
          joints=None, substeps: int = SUBSTEPS, compiled: bool = True) -> SoftRows:
     """The soft step over ``dt`` (module docstring) on ``view`` (the bodies, or the packed
-    view of bodies and particles), whose first kick of dt/``substeps`` is already done, with
-    the forces and torques of the whole dt (``World._kick``): the later kicks give gravity
-    and damping, ``bodies`` the damping; ``acceleration`` (one row per view body) what forces
+    view of bodies and particles), whose first kick of dt/``substeps`` is already done
+    (``World._kick``): the later kicks give gravity, damping and the forces and torques in
+    ``bodies.force`` / ``bodies.torque`` (the step's, found once), ``bodies`` the damping;
+    ``acceleration`` (one row per view body) what forces
     alone give each one [m/s²] (for particle rows: their kick). Without joints the step is
     one compiled call (``contact_step``); ``compiled=False`` runs the same stages from Python,
     the loop that joints need (tests compare the two: the same bits)."""
@@ -713,8 +742,10 @@ def step(view, bodies, contacts: BodyContacts, acceleration: np.ndarray,
     else:
         history.clear()
     passes = 0
+    total = np.zeros(c.count)  # each point's impulse over the step (``BodyContacts.impulse``)
     jr = joint_soft.prepare(v, joints, h) if jointed else None
-    still = np.zeros((nb, 3))  # no forces or torques in the later kicks
+    start_pos = v.position[:nb].copy()  # where the forces were found (``kick``)
+    turn = np.empty((nb, 3))
     # restitution returns at most what the contacts absorbed (``soft_energy``): counted where
     # a point can bounce; with joints, their impulses are in the same velocities (their slice)
     bouncy = c.count and not jointed and bool((c.restitution > 0.0).any())
@@ -728,9 +759,9 @@ def step(view, bodies, contacts: BodyContacts, acceleration: np.ndarray,
 
     for i in range(substeps):
         if i > 0:
-            bad = kick(nb, v.velocity, v.angular_velocity, still, still, v.inv_mass,
-                       v.inv_inertia, v.inv_inertia_world, b.linear_damping, b.angular_damping,
-                       gravity, h, awake, acceleration)
+            bad = kick(nb, v.velocity, v.angular_velocity, b.force, b.torque, start_pos,
+                       v.position, turn, v.inv_mass, v.inv_inertia, v.inv_inertia_world,
+                       b.linear_damping, b.angular_damping, gravity, h, awake, acceleration)
             if bad >= 0:
                 from ..rigid.step import spin_error
                 raise spin_error(b, int(bad), h)
@@ -772,6 +803,8 @@ def step(view, bodies, contacts: BodyContacts, acceleration: np.ndarray,
                 v, c, r, inv_h, False, soft, static)) if c.count else None)
         if budget is not None and c.count:
             budget.relaxed(v)
+        if c.count:  # the substep's warm start and passes gave r.impulse in all
+            total += r.impulse
     out.velocity_passes = passes
     if c.count:
         def bounce() -> None:
@@ -788,6 +821,7 @@ def step(view, bodies, contacts: BodyContacts, acceleration: np.ndarray,
             budget.bounce(v, r.impulse, bounce)
         else:
             bounce()
+        c.impulse[:] = total + (r.impulse - held)  # and the bounce's own
         kept = np.empty((c.count, 3))
         bm.split_friction(r.start, c.normal, r.t1, r.t2, r.jt1, r.jt2, r.jtw, kept)
         history.keep(c.key, held, kept)

@@ -232,3 +232,4 @@ def _project(bodies, rows: BodyRows, history: ImpulseHistory, joints) -> None:
     kept = np.empty((c.count, 3))
     bm.split_friction(rows.start, c.normal, rows.t1, rows.t2, rows.jt1, rows.jt2, rows.jtw, kept)
     history.keep(c.key, rows.impulse, kept)
+    c.impulse[:] = rows.impulse  # one velocity stage a substep: its impulse is the step's

@@ -30,8 +30,15 @@ def momenta(world):
     return linear, angular
 
 
-def test_body_spring_keeps_linear_and_angular_momentum():
-    world = pm.World(gravity=(0.0, 0.0, 0.0))
+STAGES = ("impulses", "soft")
+
+
+@pytest.mark.parametrize("stage", STAGES)
+def test_body_spring_keeps_linear_and_angular_momentum(stage):
+    """Equal and opposite at the two attachment points: Σ p and Σ x × p + Iω kept to 1e-9
+    (the soft step gives the spring's force in each of its substeps, at the world points it
+    was found at; holding the torque about a centre that moves instead gained 3.3e-3 here)."""
+    world = pm.World(gravity=(0.0, 0.0, 0.0), body_step=stage)
     a = world.add_body(Box((0.3, 0.2, 0.5)), (0.0, 0.0, 0.0), (0.9, 0.2, -0.3, 0.1), mass=2.0,
                        velocity=(0.5, -0.2, 0.1), angular_velocity=(1.0, 0.5, -2.0))
     b = world.add_body(Box((0.4, 0.4, 0.2)), (2.0, 0.5, -0.3), (0.7, -0.1, 0.4, 0.3), mass=3.0,
@@ -71,16 +78,12 @@ def test_centred_body_spring_oscillates_at_the_two_body_frequency():
     assert period == pytest.approx(expected, rel=0.01)
 
 
-_SAWTOOTH = pytest.mark.xfail(strict=True, reason=(
-    "the soft step applies a force generator's impulse once a step, in its first substep, and "
-    "gravity in each of its 4 substeps: a body the force holds up ends each step at "
-    "v = -(4 - 1)/2·g·h (-0.031 m/s at dt 1/120), so the spring's damper (c = 5) reads that "
-    "and holds the body up by c·1.5·g·h/k: 1.6106 m against 1.6076 m (measured)"))
-
-
-@pytest.mark.parametrize("stage", ["impulses", pytest.param("soft", marks=_SAWTOOTH)])
+@pytest.mark.parametrize("stage", STAGES)
 def test_anchored_spring_hangs_a_body_at_its_stretch(stage):
-    """At rest a damped spring holds m·g at the stretch m·g/k, whatever its damping."""
+    """At rest a damped spring holds m·g at the stretch m·g/k, whatever its damping, and the
+    body is at rest at the end of every step. (The soft step gave the spring's whole impulse
+    in the first of its 4 substeps and gravity in each: the body ended each step at
+    v = −(4 − 1)/2·g·h = −0.031 m/s, which the damper (c = 5) read, holding it at 1.6106 m.)"""
     world = pm.World(gravity=(0.0, -9.81, 0.0), body_step=stage)
     body = world.add_body(Sphere(0.2), (0.0, 1.0, 0.0), mass=2.0, linear_damping=0.05)
     world.add(AnchoredBodySpring(body, (0, 0, 0), (0.0, 3.0, 0.0), k=50.0, rest=1.0,
@@ -88,6 +91,22 @@ def test_anchored_spring_hangs_a_body_at_its_stretch(stage):
     for _ in range(1200):
         world.step(1 / 120)
     assert body.position[1] == pytest.approx(3.0 - 1.0 - 2.0 * 9.81 / 50.0, abs=1e-4)
+    assert abs(body.velocity[1]) < 1e-9
+
+
+@pytest.mark.parametrize("stage", STAGES)
+def test_a_spring_at_its_equilibrium_holds_the_body_still_every_step(stage):
+    """Hung at y = 3 − 1 − m·g/k at rest, the body stays there, v = 0 at every step's end
+    (to rounding): the spring's force and gravity act in the same substeps."""
+    m, k = 2.0, 50.0
+    world = pm.World(gravity=(0.0, -9.81, 0.0), body_step=stage)
+    body = world.add_body(Sphere(0.2), (0.0, 3.0 - 1.0 - m * 9.81 / k, 0.0), mass=m)
+    world.add(AnchoredBodySpring(body, (0, 0, 0), (0.0, 3.0, 0.0), k=k, rest=1.0, damping=5.0))
+    start = body.position.copy()
+    for _ in range(240):
+        world.step(1 / 120)
+        assert np.abs(body.velocity).max() < 1e-12
+    assert np.abs(body.position - start).max() < 1e-12
 
 
 def test_aero_uses_the_surface_velocity_so_a_spinning_plate_slows():
@@ -164,15 +183,15 @@ def test_explosion_pushes_outward_with_falloff_and_stops():
     assert box.velocity[1] > after[5, 1]  # pushed back up from below
 
 
+@pytest.mark.parametrize("stage", STAGES)
 @pytest.mark.parametrize("density", [300.0, 700.0])
-def test_buoyancy_floats_a_box_where_weight_equals_displaced_water(density):
+def test_buoyancy_floats_a_box_where_weight_equals_displaced_water(density, stage):
     """The box settles where its weight equals the water it displaces, and stops there: its
-    motion over a step, Δy/dt, is read rather than the velocity at the step's end. (With the
-    soft step, ``World(body_step="soft")``, the buoyancy's impulse comes once a step, in the
-    first of 4 substeps, and gravity in each: a floating box at rest ends each step at
-    v = −(4 − 1)/2·g·h = −0.0307 m/s at dt 1/120, measured −0.0306, its position unmoved.)"""
+    motion over a step, Δy/dt, and its velocity at the step's end. (The soft step gave the
+    buoyancy's impulse once a step, in the first of 4 substeps, and gravity in each: a
+    floating box at rest ended each step at v = −(4 − 1)/2·g·h = −0.0307 m/s at dt 1/120.)"""
     half = 0.5
-    world = pm.World(gravity=(0.0, -9.81, 0.0))
+    world = pm.World(gravity=(0.0, -9.81, 0.0), body_step=stage)
     box = world.add_body(Box((half, half, half)), (0.0, 1.0, 0.0), density=density,
                          linear_damping=0.2, angular_damping=0.2)
     world.add(BodyBuoyancy(box, (0.0, 0.0, 0.0), max_depth=half, volume=(2 * half) ** 3,
@@ -185,6 +204,47 @@ def test_buoyancy_floats_a_box_where_weight_equals_displaced_water(density):
     before = box.position[1]
     world.step(1 / 120)
     assert abs(box.position[1] - before) * 120 < 1e-3
+    assert abs(box.velocity[1]) < 1e-3
+
+
+@pytest.mark.parametrize("stage", STAGES)
+def test_a_box_floating_at_its_waterline_stays_at_rest(stage):
+    """A 300 kg/m³ box of 1 m³ put at rest where it floats (0.3 m under the water) stays there:
+    v = 0 at every step's end (to rounding), the box unmoved."""
+    half = 0.5
+    world = pm.World(gravity=(0.0, -9.81, 0.0), body_step=stage)
+    box = world.add_body(Box((half, half, half)), (0.0, half - 0.3, 0.0), density=300.0)
+    world.add(BodyBuoyancy(box, (0.0, 0.0, 0.0), max_depth=half, volume=(2 * half) ** 3,
+                           water_height=0.0))
+    for _ in range(120):
+        world.step(1 / 120)
+        assert np.abs(box.velocity).max() < 1e-12
+    assert abs(box.position[1] - (half - 0.3)) < 1e-12
+
+
+@pytest.mark.parametrize("stage", STAGES)
+def test_constant_force_and_torque_give_momenta_f_t_and_tau_t(stage):
+    """A box spinning about a tilted axis and drifting, pushed by a constant force through its
+    centre and a constant torque, without gravity: p = p₀ + F·t and, about the origin,
+    L = L₀ + ∫ x × F dt + τ·t (1e-9 relative), x × F summed as the step gives it: each step's
+    force acts at the point where it was found, the centre at the step's start."""
+    force, torque = np.array([0.3, -0.2, 0.5]), np.array([0.4, 0.1, -0.25])
+    world = pm.World(gravity=(0.0, 0.0, 0.0), body_step=stage)
+    box = world.add_body(Box((0.3, 0.2, 0.5)), (0.5, 1.0, -0.2), (0.9, 0.2, -0.3, 0.1),
+                         mass=2.0, velocity=(0.5, -0.2, 0.1), angular_velocity=(1.0, 0.5, -2.0))
+    world.add(BodyForce(lambda bodies, i, dt: (force, torque), [box]))
+    p0, l0 = momenta(world)
+    dt, steps = 1 / 60, 240
+    moment = np.zeros(3)
+    for _ in range(steps):
+        moment += np.cross(box.position, force) * dt
+        world.step(dt)
+    p1, l1 = momenta(world)
+    t = steps * dt
+    np.testing.assert_allclose(p1, p0 + force * t, rtol=0, atol=1e-9 * np.linalg.norm(p1))
+    np.testing.assert_allclose(l1, l0 + moment + torque * t, rtol=0,
+                               atol=1e-9 * np.linalg.norm(l1))
+    assert np.linalg.norm(box.angular_velocity - (1.0, 0.5, -2.0)) > 0.5  # it spun up
 
 
 def test_generators_add_to_user_forces_for_each_substep_only():

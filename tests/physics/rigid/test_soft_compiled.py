@@ -16,7 +16,8 @@ from pointmass.solver import body_soft
 
 def _scene():
     """Boxes and spheres tumbling onto the ground and each other, bouncy and rough, with
-    particles landing on them (the packed view): every stage of the step acts."""
+    particles landing on them (the packed view), two on a spring: every stage of the step
+    acts."""
     rng = np.random.default_rng(7)
     world = pm.World(body_step="soft", sleep=False)
     world.add(pm.Ground(restitution=0.3))
@@ -28,6 +29,9 @@ def _scene():
                        angular_velocity=rng.uniform(-3, 3, 3), mass=1.0 + k, friction=0.2 * k,
                        restitution=0.1 * k)
     world.add_particles([(0.1 * i, 3.5 + 0.3 * i, 0.1) for i in range(4)], radii=0.05)
+    # a spring between two of them: its force and torque in every substep's kick
+    world.add(pm.BodySpring(1, (0.1, 0.0, 0.0), 4, (0.0, 0.1, 0.0), k=20.0, rest=1.0,
+                            damping=0.5))
     return world
 
 
@@ -39,7 +43,8 @@ def _run(compiled: bool, monkeypatch) -> tuple:
             world.step(1 / 60)
     b, p = world.bodies, world.particles
     return (b.position.copy(), b.orientation.copy(), b.velocity.copy(),
-            b.angular_velocity.copy(), p.position.copy(), p.velocity.copy())
+            b.angular_velocity.copy(), p.position.copy(), p.velocity.copy(),
+            world.body_contacts.impulse.copy())
 
 
 def test_the_compiled_step_and_the_loop_give_the_same_bits(monkeypatch):
@@ -47,5 +52,5 @@ def test_the_compiled_step_and_the_loop_give_the_same_bits(monkeypatch):
     loop = _run(False, monkeypatch)
     assert fused[0][:, 1].max() < 1.0  # the bodies fell and landed: the contacts acted
     for name, a, b in zip(("position", "orientation", "velocity", "spin", "particle position",
-                           "particle velocity"), fused, loop, strict=True):
+                           "particle velocity", "step impulses"), fused, loop, strict=True):
         assert np.array_equal(a, b), name

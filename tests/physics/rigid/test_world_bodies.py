@@ -16,10 +16,10 @@ from pointmass.solver import body_soft
 def test_free_bodies_move_exactly_as_the_stepper_moves_them(stage):
     """A free body moves bit for bit as the stand-alone stepper moves it over the body stage's
     own integration steps: one of dt ("impulses"), or ``body_soft.SUBSTEPS`` of h = dt/SUBSTEPS
-    ("soft"; a force or torque acts once a step, whole, in the first substep's kick:
-    ``World._kick``). The two stages differ from each other by the O(h) of semi-implicit Euler:
-    in free fall y(t) = y₀ + v₀t − g·t²/2 − g·t·h/2, so 2 s at h = dt and dt/4 are 0.1226 m
-    apart (measured: −13.7835 and −13.6609)."""
+    ("soft"; a force or torque found once a step acts in every substep's kick, as the
+    stepper's torque given before each of its calls). The two stages differ from each other
+    by the O(h) of semi-implicit Euler: in free fall y(t) = y₀ + v₀t − g·t²/2 − g·t·h/2, so
+    2 s at h = dt and dt/4 are 0.1226 m apart (measured: −13.7835 and −13.6609)."""
     kicks = 1 if stage == "impulses" else body_soft.SUBSTEPS
     world = pm.World(gravity=(0.0, -9.81, 0.0), body_step=stage)
     q = (0.9, 0.1, -0.3, 0.2)
@@ -31,8 +31,8 @@ def test_free_bodies_move_exactly_as_the_stepper_moves_them(stage):
     for _ in range(120):
         body.add_torque((0.0, 0.0, 0.5))
         stats = world.step(1 / 60)
-        alone.add_torque(0, (0.0, 0.0, 0.5 * kicks))  # the whole step's torque, in one kick
-        for _ in range(kicks):  # the stepper clears the torque after its first call
+        for _ in range(kicks):  # the stepper clears the torque after each call
+            alone.add_torque(0, (0.0, 0.0, 0.5))
             step(alone, 1 / 60 / kicks, gravity=(0.0, -9.81, 0.0))
     assert stats.body_contacts == 0
     for name in ("position", "orientation", "velocity", "angular_velocity"):
