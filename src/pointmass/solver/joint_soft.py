@@ -60,6 +60,7 @@ from numba import njit
 
 from . import joint_solver
 from .joint_stages import LIMIT, OFF
+from .joint_tree import DIRECT as DIRECT_JOINT
 from .joint_tree import OFF as OFF_JOINT
 
 #: Stiffness of a joint's position bias [Hz] and its damping ratio (Box2D v3's
@@ -73,6 +74,8 @@ JOINT_HERTZ_CAP = 0.25
 #: than ``TOLERANCE`` [m/s or rad/s].
 MAX_PASSES = 30
 TOLERANCE = 1e-5
+#: Whether the tree solve stiffens the inertia by the joints' tension (``joint_solver``).
+GEOMETRIC = False
 
 
 @dataclass
@@ -98,7 +101,8 @@ def prepare(view, joints, h: float) -> SoftJointRows:
     """The joints' rows in the bodies' pose now (arms, masses, axes, limits, the tree's
     factors), targets for the solve (Ċ = −b·C) and for the relax pass (0)."""
     rate, mass_scale, impulse_scale = softness(h)
-    rows = joint_solver.prepare(view, joints, h, beta=rate * h, loops=False)
+    rows = joint_solver.prepare(view, joints, h, beta=rate * h, loops=False,
+                                geometric=GEOMETRIC)
     rows.mass_scale = mass_scale
     rows.impulse_scale = impulse_scale
     # a gap is closed at the contacts' push-out speed at most (Box2D's ``contactSpeed``)
@@ -106,6 +110,7 @@ def prepare(view, joints, h: float) -> SoftJointRows:
 
     size = np.sqrt((rows.bias * rows.bias).sum(axis=1))
     rows.bias *= np.minimum(1.0, CONTACT_SPEED / np.maximum(size, 1e-300))[:, None]
+    rows.speed = CONTACT_SPEED  # ... and so is the aim at the end pose
     # relax: no bias; a limit still open keeps its speculative target (≤ 0), a violated one
     # (target > 0) and every equality row aim at Ċ = 0
     target = np.where((rows.row == LIMIT) & (rows.target < 0.0), rows.target, 0.0)
@@ -114,9 +119,99 @@ def prepare(view, joints, h: float) -> SoftJointRows:
     return SoftJointRows(rows, relax, rows.bias.copy())
 
 
-def warm_start(view, joints, rows: SoftJointRows) -> None:
-    """Apply the impulses the joints needed last substep (``joints.point``, ``joints.turn``)."""
-    joint_solver.warm_start(view, joints, rows.solve)
+def warm_start(view, joints, rows: SoftJointRows) -> float:
+    """Apply the impulses the joints needed last substep (``joints.point``, ``joints.turn``),
+    scaled by the α ∈ [0, 1] that best starts the solve (``warm_scale``); returns α."""
+    j = joints.arrays()
+    r = rows.solve
+    alpha = float(warm_scale(j.a, j.b, r.ra, r.rb, r.axis, r.row, r.mode, r.kmat, r.mass,
+                             r.target, r.bias, view.inv_mass, view.inv_inertia_world,
+                             view.velocity, view.angular_velocity, joints.point, joints.turn,
+                             r.impulse_scale / r.mass_scale))
+    joint_solver.warm_start(view, joints, r)
+    return alpha
+
+
+@njit(cache=True, nogil=True)
+def warm_scale(ja, jb, ra, rb, axis, row, mode, kmat, mass, target, bias, inv_mass, inv_i,
+               vel, ang, point, turn, soft):
+    """Scale the kept impulses λ (``point`` of the Gauss–Seidel joints, every ``turn``) in
+    place by the α ∈ [0, 1] that minimises the soft solve's objective along them,
+    F(α·λ) = ½α²·λᵀ(A + Γ)λ − α·λᵀ(t − J·v), and return α (module docstring, "The warm
+    start"). A = J·M⁻¹·Jᵀ, Γ = ``soft``·diag(A) the soft rows' compliance (an open limit is
+    rigid), t their targets, v the velocities now. A DIRECT joint's point block is not warm
+    started (``joint_stages.warm_start``) and takes no part."""
+    n = vel.shape[0]
+    load = np.zeros((n, 6))  # per body: the impulse and the angular impulse λ applies
+    aim = 0.0  # λᵀt
+    compliance = 0.0  # λᵀΓλ
+    for j in range(ja.shape[0]):
+        if mode[j] == OFF_JOINT:
+            continue
+        a = ja[j]
+        b = jb[j]
+        if mode[j] < DIRECT_JOINT:
+            px, py, pz = point[j, 0], point[j, 1], point[j, 2]
+            _load(load, b, 1.0, rb[j, 0], rb[j, 1], rb[j, 2], px, py, pz)
+            _load(load, a, -1.0, ra[j, 0], ra[j, 1], ra[j, 2], px, py, pz)
+            aim += px * bias[j, 0] + py * bias[j, 1] + pz * bias[j, 2]
+            k = kmat[j]
+            compliance += soft * (px * (k[0, 0] * px + k[0, 1] * py + k[0, 2] * pz)
+                                  + py * (k[1, 0] * px + k[1, 1] * py + k[1, 2] * pz)
+                                  + pz * (k[2, 0] * px + k[2, 1] * py + k[2, 2] * pz))
+        for s in range(3):
+            if row[j, s] == OFF:
+                continue
+            ux, uy, uz = axis[j, s, 0], axis[j, s, 1], axis[j, s, 2]
+            x = turn[j, s, 0] * ux + turn[j, s, 1] * uy + turn[j, s, 2] * uz
+            if row[j, s] == LIMIT and x < 0.0:
+                x = 0.0
+            for side in range(2):
+                i = b if side == 0 else a
+                if i >= 0:
+                    sign = 1.0 if side == 0 else -1.0
+                    load[i, 3] += sign * x * ux
+                    load[i, 4] += sign * x * uy
+                    load[i, 5] += sign * x * uz
+            aim += x * target[j, s]
+            if not (row[j, s] == LIMIT and target[j, s] <= 0.0):
+                compliance += soft * x * x / mass[j, s]
+    square = 0.0  # λᵀAλ
+    along = 0.0  # λᵀJ·v
+    for i in range(n):
+        w = inv_mass[i]
+        for k in range(3):
+            square += w * load[i, k] * load[i, k]
+            along += load[i, k] * vel[i, k] + load[i, 3 + k] * ang[i, k]
+            for m in range(3):
+                square += load[i, 3 + k] * inv_i[i, k, m] * load[i, 3 + m]
+    total = square + compliance
+    if not total > 0.0:
+        return 1.0
+    alpha = min(1.0, max(0.0, (aim - along) / total))
+    if alpha < 1.0:
+        for j in range(ja.shape[0]):
+            if mode[j] == OFF_JOINT:
+                continue
+            for k in range(3):
+                if mode[j] < DIRECT_JOINT:
+                    point[j, k] *= alpha
+                for s in range(3):
+                    turn[j, s, k] *= alpha
+    return alpha
+
+
+@njit(cache=True, inline="always")
+def _load(load, i, sign, rx, ry, rz, px, py, pz):
+    """Body i (i < 0: the world, nothing) takes sign·P at arm r."""
+    if i < 0:
+        return
+    load[i, 0] += sign * px
+    load[i, 1] += sign * py
+    load[i, 2] += sign * pz
+    load[i, 3] += sign * (ry * pz - rz * py)
+    load[i, 4] += sign * (rz * px - rx * pz)
+    load[i, 5] += sign * (rx * py - ry * px)
 
 
 def recall(joints, rows: SoftJointRows) -> None:
