@@ -125,13 +125,18 @@ def _watched_steps(world: pm.World, steps: int) -> list[float]:
     return speeds
 
 
-def test_a_body_held_by_two_joints_and_hit_hard_keeps_stepping():
+#: Both body stages: ``World()``'s and the soft step (issue 26, ``solver/body_soft.py``).
+STAGES = ["impulses", "soft"]
+
+
+@pytest.mark.parametrize("body_step", STAGES)
+def test_a_body_held_by_two_joints_and_hit_hard_keeps_stepping(body_step):
     """Issue 30's hang: a 55 g box held by a ball joint and a hinge to two world points (its
     two joint points 16 cm apart, the anchors 105 cm apart and not on the hinge's axis: the
     joints cannot all hold), hit from below by a 2.3 kg box at 16 m/s. Before: the first step
     took 0.36 s and step 3 never returned (the joints spun the box up without bound, and the
     free rotation split its turn into h·|ω| pieces: 1e56 of them)."""
-    world = pm.World()
+    world = pm.World(body_step=body_step)
     box = world.add_body(Box((0.1, 0.05, 0.08)), (0.0, 1.0, 0.0), mass=0.055)
     world.add(BallJoint(box, (0.08, 0.0, 0.0), None, (0.5, 1.5, 0.5)))
     world.add(HingeJoint(box, (-0.08, 0.0, 0.0), None, (-0.2, 0.6, 0.4), axis=(0.6, 0.0, 0.8)))
@@ -143,18 +148,96 @@ def test_a_body_held_by_two_joints_and_hit_hard_keeps_stepping():
     assert np.isfinite(world.bodies.position).all()
 
 
-def test_a_force_free_jointed_scene_does_not_explode():
+#: The largest relative gain of kinetic energy in a step of seed 677 with the soft step (a
+#: ratchet: issue 30 asks for 1e-9; measured 2.1e-5, at step 2: the soft step has no
+#: energy guard, and its joints' bias and aim may add what closing a gap takes).
+SOFT_677_GAIN = 1e-4
+
+
+@pytest.mark.parametrize("body_step", STAGES)
+def test_a_force_free_jointed_scene_does_not_explode(body_step):
     """Issue 30's silent explosion, as the generator makes it: seed 677 is force-free, six
     bodies (a 2.3 t, a 3.4 g, a 24 kg, a 3.7 kg and a 1.8 kg one, one static), three joints
     to world points (a hinge and a ball joint on one body, a ball joint on another), four
     particles, a ground; 1.55e5 J. Before: 6.7e7 m/s at step 5, finite, no error. Now no step
-    gains energy (``solver/body_energy.py``)."""
+    gains energy with ``World()`` (``solver/body_energy.py``); the soft step gains at most
+    ``SOFT_677_GAIN``."""
     world, force_free = fuzz.build(677)
     assert force_free and world.bodies.count == 6 and len(world.joints) == 3  # that scene
     assert world.kinetic_energy() == pytest.approx(1.5486e5, rel=1e-4)
-    o = fuzz.run(677, 120, watchdog=WATCHDOG)
-    assert o.refused is None and o.explosion is None and o.gain is None
+    o = fuzz.run(677, 120, watchdog=WATCHDOG, body_step=body_step)
+    assert o.refused is None and o.explosion is None
+    if body_step == "soft":
+        assert o.worst_gain <= SOFT_677_GAIN
+    else:
+        assert o.gain is None
     assert o.speed < 100.0
+
+
+# -- the soft step's jointed scenes (issue 26's blocker 1) ---------------------------------------
+#: Jointed scenes that exploded with ``World(body_step="soft")`` (> 1e4 m/s, no error; seeds
+#: 0–199, 300 steps), with the step they exploded in: most hold a light body by two joints to
+#: one other body (a ball and a hinge, two hinges on different axes: over-constrained) at arms
+#: of 4–9 m (the generator's joint point on B is where A's is), with mass ratios to 1e5.
+#: What threw them (``solver/joint_soft.py``'s docstring): the warm start of the Gauss–Seidel
+#: rows' impulses in a turned pose (the self-stress of an over-constrained set, which no pass
+#: could take back within its cap), the tree solve's geometric stiffness (another metric than
+#: the rows and contacts on the same bodies) and the aim at the end pose of a fast-turning
+#: long arm (Newton's first step, unbounded).
+SOFT_EXPLODED = {6: 68, 14: 81, 24: 20, 33: 15, 52: 8, 53: 3, 170: 16, 171: 19, 176: 9,
+                 194: 3, 196: 1}
+
+
+@pytest.mark.parametrize("seed", sorted(SOFT_EXPLODED))
+def test_soft_step_jointed_scenes_that_exploded_hold(seed):
+    """Every step returns, no speed passes 1e4 m/s and no step leaves a state that is not
+    finite, through all 300 steps (measured: fastest 4.8e3 and 4.2e3 m/s, seeds 33 and 53:
+    a 1.4 g and a 2 g box on over-constrained pairs; the others ≤ 540 m/s)."""
+    o = fuzz.run(seed, fuzz.STEPS, watchdog=WATCHDOG, body_step="soft")
+    assert o.refused is None, o.refused
+    assert o.explosion is None, f"seed {seed}: {o.speed:.3g} m/s at step {o.explosion}"
+    assert o.steps == fuzz.STEPS
+
+
+def test_soft_step_refuses_a_velocity_it_cannot_square_in_the_step():
+    """A body whose velocity the step leaves too large to square (its energy is not a finite
+    number) is refused by that step, naming it: before, a jointed scene (seed 196) left
+    1e158 rad/s after its first step and only the next step's kick caught it."""
+    world = pm.World(body_step="soft", gravity=(0.0, 0.0, 0.0))
+    fast = world.add_body(Sphere(0.1), (0.0, 0.0, 0.0))
+    held = world.add_body(Sphere(0.1), (3.0, 0.0, 0.0))
+    world.add(BallJoint(held, (0.0, 0.0, 0.0), None, (3.0, 0.0, 0.0)))  # the jointed loop
+    world.step(DT)
+    # what a blow-up leaves (no kick or drift sees it: the spin and the position stay finite)
+    world.bodies.velocity[fast] = (1e160, 0.0, 0.0)
+    with pytest.raises(FloatingPointError, match="body 0 was left with a velocity"):
+        world.step(DT)
+
+
+#: The jointed scenes of seeds 0–199 with the soft step (143, 300 steps each; ~190 s of CPU).
+#: Measured now (before the fixes of ``solver/joint_soft.py``'s warm start, tree metric and
+#: aim: 11 explosions, 6 in 0–99 and 5 in 100–199): 0 explosions; of the 61 force-free ones,
+#: 51 have a step gaining > 1e-9 of the kinetic energy and 17 > 1e-3 (issue 30's target: 0),
+#: 40 end a step with an overlap > 2 cm. Ratchets at those counts; the target is in issue 30.
+SOFT_JOINTED_GAINS = (51, 17)
+SOFT_JOINTED_DEEP = 40
+
+
+@pytest.mark.slow
+def test_soft_step_jointed_fuzz_counts():
+    outcomes = []
+    for seed in range(200):
+        world, _ = fuzz.build(seed)
+        if not len(world.joints):
+            continue
+        outcomes.append(fuzz.run(seed, fuzz.STEPS, watchdog=WATCHDOG, body_step="soft"))
+    assert len(outcomes) == 143
+    exploded = [o.seed for o in outcomes if o.explosion is not None]
+    assert not exploded, exploded
+    free = [o for o in outcomes if o.force_free]
+    assert sum(o.gain is not None for o in free) <= SOFT_JOINTED_GAINS[0]
+    assert sum(o.gain_1e3 is not None for o in free) <= SOFT_JOINTED_GAINS[1]
+    assert sum(o.deep is not None for o in outcomes) <= SOFT_JOINTED_DEEP
 
 
 # -- energy from contacts (issue 31, item 2) ----------------------------------------------------

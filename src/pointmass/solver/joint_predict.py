@@ -61,11 +61,12 @@ def _end_pose(pos, quat, vel, ang, inv_inertia, dt, i, xend, qend):
 
 @njit(cache=True, nogil=True)
 def end_targets(ja, jb, la, lb, pos, quat, vel, ang, inv_inertia, dt, mode, ra, rb, keep, bias,
-                xend, qend):
+                xend, qend, speed):
     """For every joint the exact solve takes (``mode`` DIRECT or LOOP): ``bias`` (J, 3) ←
     Ċ_now − (C_end − K)/dt of its point block (C_end: the gap in the predicted end pose; K:
     what the step may leave of the gap the joint has now, ``keep`` (J, 3); ``xend`` (N, 3),
-    ``qend`` (N, 4) are scratch). Returns the largest predicted excess over dt [m/s]."""
+    ``qend`` (N, 4) are scratch), no faster than ``speed`` [m/s] (the soft step's push-out
+    cap; ``inf``: none). Returns the largest predicted excess over dt [m/s]."""
     largest = 0.0
     for j in range(ja.shape[0]):
         if mode[j] < DIRECT_JOINT:  # Gauss–Seidel's keep prepare's Baumgarte targets
@@ -100,4 +101,8 @@ def end_targets(ja, jb, la, lb, pos, quat, vel, ang, inv_inertia, dt, mode, ra, 
         bias[j, 0] = cx - gx / dt
         bias[j, 1] = cy - gy / dt
         bias[j, 2] = cz - gz / dt
+        size = math.sqrt(bias[j, 0] ** 2 + bias[j, 1] ** 2 + bias[j, 2] ** 2)
+        if size > speed:
+            for k in range(3):
+                bias[j, k] *= speed / size
     return largest

@@ -6,6 +6,7 @@ angular rows, and the point blocks of the joints the tree solve does not take) a
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 
 import numpy as np
@@ -65,12 +66,17 @@ class JointRows:
     #: row has accumulated). 1 and 0: rigid rows (the default stage, and every relax pass).
     mass_scale: float = 1.0
     impulse_scale: float = 0.0
+    #: Fastest relative velocity [m/s] a point block's aimed target may ask for (the soft
+    #: step's push-out cap, ``joint_soft``); inf: no cap (the default stage).
+    speed: float = math.inf
 
 
-def prepare(bodies, joints, dt: float, beta: float = BETA, loops: bool = True) -> JointRows:
+def prepare(bodies, joints, dt: float, beta: float = BETA, loops: bool = True,
+            geometric: bool | None = None) -> JointRows:
     """The rows of ``joints`` (a ``rigid.joint_set.Joints``) in the bodies' current pose, their
     targets Ċ = −β·C/dt (``beta``: the fraction of a position error taken back in dt);
-    ``loops`` False leaves the joints that close a loop of a tree to Gauss–Seidel."""
+    ``loops`` False leaves the joints that close a loop of a tree to Gauss–Seidel;
+    ``geometric``: whether the tree solve stiffens the inertia (``GEOMETRIC`` if None)."""
     j = joints.arrays()
     n = j.a.shape[0]
     rows = JointRows(np.empty((n, 3)), np.empty((n, 3)), np.empty((n, 3, 3)), np.empty((n, 3)),
@@ -89,13 +95,15 @@ def prepare(bodies, joints, dt: float, beta: float = BETA, loops: bool = True) -
                b.inv_mass, b.inv_inertia_world, b.position, b.orientation, dt,
                beta, rows.ra, rows.rb, rows.kmat, rows.bias,
                rows.axis, rows.mass, rows.target, rows.row)
-    rows.tree = _factor(b, j, rows, movable, joints.point, dt)
+    rows.tree = _factor(b, j, rows, movable, joints.point, dt,
+                        GEOMETRIC if geometric is None else geometric)
     # the errors now, from the Baumgarte targets js.prepare set (−β·C/dt)
     rows.keep = rows.bias * (-(1.0 - beta) * dt / beta) if beta > 0.0 else rows.bias * 0.0
     return rows
 
 
-def _factor(b, j, rows: JointRows, movable: np.ndarray, point: np.ndarray, dt: float) -> tuple:
+def _factor(b, j, rows: JointRows, movable: np.ndarray, point: np.ndarray, dt: float,
+            geometric: bool) -> tuple:
     """Order and factor the DIRECT forest (``joint_direct``) and the LOOP joints' masses
     (``joint_loops``); a singular pivot (a body without full inertia, repeated joints) sends
     the joints back to the Gauss–Seidel rows (all of them, or the loops only)."""
@@ -108,7 +116,7 @@ def _factor(b, j, rows: JointRows, movable: np.ndarray, point: np.ndarray, dt: f
     dinv = np.zeros((count, 6, 6))
     low = np.zeros((count, 6, 6))
     extra = np.zeros((b.inv_mass.shape[0], 3, 3))
-    if GEOMETRIC:
+    if geometric:
         jd.geometric(j.a, j.b, rows.mode, rows.ra, rows.rb, point, b.inv_inertia_world, dt,
                      extra)
     n = b.inv_mass.shape[0]
@@ -148,7 +156,7 @@ def velocity_pass(bodies, joints, rows: JointRows) -> float:
         change = float(joint_predict.end_targets(
             j.a, j.b, j.local_a, j.local_b, b.position, b.orientation, b.velocity,
             b.angular_velocity, b.inv_inertia, rows.dt, rows.mode, rows.ra, rows.rb, rows.keep,
-            rows.bias, np.empty((n, 3)), np.empty((n, 4))))
+            rows.bias, np.empty((n, 3)), np.empty((n, 4)), rows.speed))
     change = max(change, float(js.solve_pass(
         j.a, j.b, rows.ra, rows.rb, rows.kmat, rows.bias, rows.axis, rows.mass, rows.target,
         rows.row, b.inv_mass, b.inv_inertia_world, b.velocity, b.angular_velocity,
