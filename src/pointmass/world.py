@@ -26,6 +26,7 @@ from .rigid.joints import Joint
 from .rigid.shapes import Box, Sphere
 from .rigid.step import integrate_positions, integrate_velocities, spin_error
 from .solver import ImpulseHistory, Solver, SolverSettings, SolveStats, body_soft
+from .solver.body_continuous import sweep_back
 from .solver.body_late import project_late
 from .stability import SpringCheck, jump_check, needs_jump_check
 from .step_stats import StepStats
@@ -552,6 +553,7 @@ class World:
         (``rigid/sleep.py``)."""
         b = self.bodies
         h = dt / body_soft.SUBSTEPS
+        x_start, q_start = b.position.copy(), b.orientation.copy()  # the sweep's start
         kept, acc = self._apply_body_forces(dt)
         p = self.particles
         self._force_dt = dt
@@ -575,6 +577,11 @@ class World:
             packed.take_positions(b, p)
             b.velocity[:] = packed.velocity[:b.count]
             p.velocity[packed.selected] = packed.velocity[b.count:]
+        # what the step's one collision pass did not foresee: a fast body is put back where
+        # it first meets a static body or a plane (``solver/body_continuous.py``)
+        planes = [g for g in self.contact_generators if isinstance(g, Plane)]
+        exclude = self.joints.pair_keys(b.count) if self.joints else None
+        sweep_back(b, planes, exclude, x_start, q_start, dt)
         self._body_rows = rows
         return rows
 
