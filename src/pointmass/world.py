@@ -546,7 +546,9 @@ class World:
     def _substep_bodies_soft(self, dt: float):
         """The rigid bodies' substep: the first kick (gravity, forces, torques over
         dt / ``body_soft.SUBSTEPS``), contacts once, then the soft step's substeps
-        (``solver/body_soft.py``: kick, warm start, soft solve, drift, relax; restitution).
+        (``solver/body_soft.py``: kick, warm start, soft solve, drift, relax; restitution),
+        then its continuous collision (``solver/body_continuous.py``: a fast body back to
+        where its step first meets what the collision pass did not foresee).
         Particles with a radius that touch a body join the stage as bodies without inertia
         (``rigid/particle_body.py``); with none touching, the stage sees the bodies alone, as
         in a world without particles. Sleeping bodies are skipped throughout

@@ -23,12 +23,13 @@ What (after the substeps and the restitution):
    between the two (a slerp), against every static body and plane its swept bounding sphere
    comes near (and not the pairs a joint joins).
 3. The time of impact of each is found by conservative advancement (Mirtich 1996; Box2D's
-   ``b2TimeOfImpact`` is the same iteration on its distance): no point of the shape moves
-   faster along the sweep than L = |Δx| + θ·R, so from a separation s the pair is at least
-   s − L·Δt apart after Δt, and advancing by (s − target)/L never passes the target. The
-   separations are exact signed distances (sphere and box against a plane, a sphere, a box)
-   or, box against box, the largest gap over the 15 separating axes, a lower bound of the
-   distance (which the advance needs: it only ever stops short).
+   ``b2TimeOfImpact`` iterates on its separating axis the same way): at a pose of the sweep
+   the pair's gap s along a direction n (the signed distance and its direction: sphere and
+   box against a plane, a sphere, a box; box against box, the best of the 15 separating
+   axes, a lower bound of the distance) bounds their signed distance from below at every
+   pose, and closes at most at L = max(0, −n·Δx) + θ·R along the sweep; so advancing by
+   (s − target)/L never passes the target, and a pair that does not approach along n (a
+   box sliding along the ground) is done at once.
 4. The target is ``SLOP`` (Box2D's linear slop: where a TOI stops a body), or for a pair that
    starts the step within 2·``SLOP`` (touching: sliding, resting, pushed), ``SLOP`` less than
    its separation then: a body that rests or slides on the ground is left alone, one whose
@@ -94,13 +95,28 @@ def _pose_at(x0, q0, dx, ux, uy, uz, angle, t):
 
 @njit(cache=True, nogil=True)
 def _point_box(px, py, pz, c, qw, qx, qy, qz, h):
-    """Signed distance from a point to a box (centre c, orientation q, half-extents h)."""
+    """Signed distance from a point to a box (centre c, orientation q, half-extents h), and
+    the unit direction from the box towards the point along which it is measured."""
     lx, ly, lz = qrot_inv(qw, qx, qy, qz, px - c[0], py - c[1], pz - c[2])
     dx = abs(lx) - h[0]
     dy = abs(ly) - h[1]
     dz = abs(lz) - h[2]
-    ox, oy, oz = max(dx, 0.0), max(dy, 0.0), max(dz, 0.0)
-    return math.sqrt(ox * ox + oy * oy + oz * oz) + min(max(dx, dy, dz), 0.0)
+    sx = 1.0 if lx >= 0.0 else -1.0
+    sy = 1.0 if ly >= 0.0 else -1.0
+    sz = 1.0 if lz >= 0.0 else -1.0
+    ox, oy, oz = max(dx, 0.0) * sx, max(dy, 0.0) * sy, max(dz, 0.0) * sz
+    out = math.sqrt(ox * ox + oy * oy + oz * oz)
+    if out > 0.0:
+        nx, ny, nz = qrot(qw, qx, qy, qz, ox / out, oy / out, oz / out)
+        return out, nx, ny, nz
+    if dx >= dy and dx >= dz:  # inside: out through the nearest face
+        nx, ny, nz = qrot(qw, qx, qy, qz, sx, 0.0, 0.0)
+        return dx, nx, ny, nz
+    if dy >= dz:
+        nx, ny, nz = qrot(qw, qx, qy, qz, 0.0, sy, 0.0)
+        return dy, nx, ny, nz
+    nx, ny, nz = qrot(qw, qx, qy, qz, 0.0, 0.0, sz)
+    return dz, nx, ny, nz
 
 
 @njit(cache=True, nogil=True)
@@ -119,11 +135,12 @@ def _reach(ax, h, lx, ly, lz):
 
 @njit(cache=True, nogil=True)
 def _box_box(pa, a, ha, pb, b, hb):
-    """The largest gap of two boxes (axes rows a, b) over the 15 separating axes: their
-    distance when apart along a face axis, a lower bound of it otherwise, and minus their
-    penetration depth when they overlap."""
+    """The largest gap of two boxes (axes rows a, b) over the 15 separating axes, and that
+    axis pointing from B towards A: their distance when apart along a face axis, a lower
+    bound of it otherwise, and minus their penetration depth when they overlap."""
     dx, dy, dz = pb[0] - pa[0], pb[1] - pa[1], pb[2] - pa[2]
     best = -math.inf
+    bx, by, bz = 1.0, 0.0, 0.0
     for k in range(15):
         if k < 3:
             lx, ly, lz = a[k, 0], a[k, 1], a[k, 2]
@@ -139,58 +156,101 @@ def _box_box(pa, a, ha, pb, b, hb):
             if n < 1e-6:  # parallel edges: the face axes cover them
                 continue
             lx, ly, lz = lx / n, ly / n, lz / n
-        gap = abs(dx * lx + dy * ly + dz * lz) - _reach(a, ha, lx, ly, lz) \
-            - _reach(b, hb, lx, ly, lz)
+        along = dx * lx + dy * ly + dz * lz
+        gap = abs(along) - _reach(a, ha, lx, ly, lz) - _reach(b, hb, lx, ly, lz)
         if gap > best:
             best = gap
-    return best
+            f = -1.0 if along >= 0.0 else 1.0
+            bx, by, bz = f * lx, f * ly, f * lz
+    return best, bx, by, bz
 
 
 @njit(cache=True, nogil=True)
-def _separation(shape_i, size_i, px, py, pz, qw, qx, qy, qz, axes_i, axes_j, j, pos, shape,
-                size, quat, plane_n, plane_d):
-    """Signed separation of body i at pose (p, q) from static body j (≥ 0) or plane −1 − j."""
-    if j < 0:
-        s = -1 - j
-        nx, ny, nz = plane_n[s, 0], plane_n[s, 1], plane_n[s, 2]
-        d = px * nx + py * ny + pz * nz - plane_d[s]
-        if shape_i == SPHERE:
-            return d - size_i[0]
-        _box_axes(qw, qx, qy, qz, axes_i)
-        return d - _reach(axes_i, size_i, nx, ny, nz)
+def _plane_gap(shape_i, size_i, px, py, pz, qw, qx, qy, qz, nx, ny, nz, offset, axes_i):
+    """Signed distance of body i at pose (p, q) from the plane n·x = offset (solid below)."""
+    d = px * nx + py * ny + pz * nz - offset
     if shape_i == SPHERE:
-        if shape[j] == SPHERE:
-            ex, ey, ez = px - pos[j, 0], py - pos[j, 1], pz - pos[j, 2]
-            return math.sqrt(ex * ex + ey * ey + ez * ez) - size_i[0] - size[j, 0]
-        qj = quat[j]
-        return _point_box(px, py, pz, pos[j], qj[0], qj[1], qj[2], qj[3], size[j]) - size_i[0]
-    if shape[j] == SPHERE:
-        return _point_box(pos[j, 0], pos[j, 1], pos[j, 2], (px, py, pz), qw, qx, qy, qz,
-                          size_i) - size[j, 0]
+        return d - size_i[0]
     _box_axes(qw, qx, qy, qz, axes_i)
-    qj = quat[j]
-    _box_axes(qj[0], qj[1], qj[2], qj[3], axes_j)
-    return _box_box((px, py, pz), axes_i, size_i, pos[j], axes_j, size[j])
+    return d - _reach(axes_i, size_i, nx, ny, nz)
 
 
 @njit(cache=True, nogil=True)
-def _impact(i, j, x0, q0, dx, ux, uy, uz, angle, bound, limit, pos, shape, size, quat,
-            plane_n, plane_d, axes_i, axes_j):
-    """The fraction of the step (< ``limit``) at which body i's sweep first reaches the
-    target separation from static body / plane j (module docstring), or ``limit``."""
-    s = _separation(shape[i], size[i], x0[0], x0[1], x0[2], q0[0], q0[1], q0[2], q0[3],
-                    axes_i, axes_j, j, pos, shape, size, quat, plane_n, plane_d)
-    target = min(SLOP, s - SLOP)
+def _pair_gap(shape_i, size_i, pi, qi, shape_j, size_j, pj, qj, axes_i, axes_j):
+    """Bodies i and j at poses (pi, qi), (pj, qj): (a gap s along a unit direction n from j
+    towards i, n). s is the signed distance (box–box: the best separating axis's gap, a lower
+    bound of it); the gap along this fixed n bounds the signed distance from below at every
+    other pose too (``_impact``)."""
+    if shape_i == SPHERE:
+        if shape_j == SPHERE:
+            ex, ey, ez = pi[0] - pj[0], pi[1] - pj[1], pi[2] - pj[2]
+            d = math.sqrt(ex * ex + ey * ey + ez * ez)
+            if d == 0.0:
+                return -size_i[0] - size_j[0], 1.0, 0.0, 0.0
+            return d - size_i[0] - size_j[0], ex / d, ey / d, ez / d
+        d, nx, ny, nz = _point_box(pi[0], pi[1], pi[2], pj, qj[0], qj[1], qj[2], qj[3], size_j)
+        return d - size_i[0], nx, ny, nz
+    if shape_j == SPHERE:
+        d, nx, ny, nz = _point_box(pj[0], pj[1], pj[2], pi, qi[0], qi[1], qi[2], qi[3], size_i)
+        return d - size_j[0], -nx, -ny, -nz
+    _box_axes(qi[0], qi[1], qi[2], qi[3], axes_i)
+    _box_axes(qj[0], qj[1], qj[2], qj[3], axes_j)
+    return _box_box(pi, axes_i, size_i, pj, axes_j, size_j)
+
+
+@njit(cache=True, nogil=True)
+def _pose(k, t, x_start, q_start, sweep):
+    """Body k's pose at fraction t of its sweep (``sweep`` row: Δx, unit axis, angle)."""
+    w = sweep[k]
+    px, py, pz, qw, qx, qy, qz = _pose_at(x_start[k], q_start[k], w[0:3], w[3], w[4], w[5],
+                                          w[6], t)
+    return (px, py, pz), (qw, qx, qy, qz)
+
+
+@njit(cache=True, nogil=True)
+def _impact(i, j, limit, x_start, q_start, sweep, shape, size, plane_n, plane_d, axes_i,
+            axes_j):
+    """The fraction of the step (< ``limit``) at which body i's sweep first brings it to the
+    target separation from body j's sweep (a static body's is still) or, for j < 0, from
+    plane −1 − j (module docstring); ``limit`` if it does not.
+
+    Conservative advancement along the direction found: from the gap s along n at t, the gap
+    along that same n closes at most at L = max(0, −n·(Δx_i − Δx_j)) + θ_i·R_i + θ_j·R_j
+    over the sweeps (the centres' approach along n; a turn by θ moves no point of a shape
+    more than θ·R), and it bounds the signed distance from below at every pose; so advancing
+    by (s − target)/L never passes the target, and a pair that does not approach along n (a
+    box sliding along the ground) is done at once."""
+    wi = sweep[i]
+    spin = wi[6] * wi[7]
+    if j >= 0:
+        wj = sweep[j]
+        ex, ey, ez = wi[0] - wj[0], wi[1] - wj[1], wi[2] - wj[2]
+        spin += wj[6] * wj[7]
+    else:
+        ex, ey, ez = wi[0], wi[1], wi[2]
     t = 0.0
-    for _ in range(ITERATIONS):
-        if s <= target + TOLERANCE:
+    target = 0.0
+    for it in range(ITERATIONS + 1):
+        pi, qi = _pose(i, t, x_start, q_start, sweep)
+        if j < 0:
+            s = -1 - j
+            nx, ny, nz = plane_n[s, 0], plane_n[s, 1], plane_n[s, 2]
+            gap = _plane_gap(shape[i], size[i], pi[0], pi[1], pi[2], qi[0], qi[1], qi[2], qi[3],
+                             nx, ny, nz, plane_d[s], axes_i)
+        else:
+            pj, qj = _pose(j, t, x_start, q_start, sweep)
+            gap, nx, ny, nz = _pair_gap(shape[i], size[i], pi, qi, shape[j], size[j], pj, qj,
+                                        axes_i, axes_j)
+        if it == 0:
+            target = min(SLOP, gap - SLOP)
+        elif gap <= target + TOLERANCE or it == ITERATIONS:
             return t
-        t += (s - target) / bound
+        rate = max(0.0, -(nx * ex + ny * ey + nz * ez)) + spin
+        if rate <= 0.0:
+            return limit
+        t += (gap - target) / rate
         if t >= limit:
             return limit
-        px, py, pz, qw, qx, qy, qz = _pose_at(x0, q0, dx, ux, uy, uz, angle, t)
-        s = _separation(shape[i], size[i], px, py, pz, qw, qx, qy, qz, axes_i, axes_j, j, pos,
-                        shape, size, quat, plane_n, plane_d)
     return t
 
 
@@ -203,80 +263,78 @@ def clamp(pos, quat, vel, ang, inv_mass, inv_inertia, inv_i, shape, size, awake,
     nb = pos.shape[0]
     axes_i = np.empty((3, 3))
     axes_j = np.empty((3, 3))
-    dx = np.empty(3)
-    moved = 0
-    statics = 0
-    for j in range(nb):
-        if inv_mass[j] == 0.0 and (shape[j] == SPHERE or shape[j] == BOX):
-            statics += 1
-    for i in range(nb):
-        if inv_mass[i] == 0.0 or not awake[i] or (shape[i] != SPHERE and shape[i] != BOX):
+    # per body: Δx (3), the turn's unit axis (3) and angle, the radius a turn moves a point
+    # of its surface by at most (0 for a sphere), the bounding radius, the travel
+    sweep = np.zeros((nb, 10))
+    fast = np.zeros(nb, np.bool_)
+    solid = np.zeros(nb, np.bool_)
+    for k in range(nb):
+        solid[k] = shape[k] == SPHERE or shape[k] == BOX
+        if not solid[k]:
             continue
-        if shape[i] == SPHERE:
-            radius = 0.0  # a spin does not move a sphere's surface
-            smallest = size[i, 0]
-            bounding = size[i, 0]
+        w = sweep[k]
+        if shape[k] == SPHERE:
+            w[8] = size[k, 0]
+            smallest = size[k, 0]
         else:
-            radius = math.sqrt(size[i, 0] ** 2 + size[i, 1] ** 2 + size[i, 2] ** 2)
-            smallest = min(size[i, 0], size[i, 1], size[i, 2])
-            bounding = radius
+            w[7] = math.sqrt(size[k, 0] ** 2 + size[k, 1] ** 2 + size[k, 2] ** 2)
+            w[8] = w[7]
+            smallest = min(size[k, 0], size[k, 1], size[k, 2])
+        if inv_mass[k] == 0.0 or not awake[k]:
+            continue  # still: no sweep
+        for u in range(3):
+            w[u] = pos[k, u] - x_start[k, u]
+        w[3], w[4], w[5], w[6] = _rotation_between(q_start[k], quat[k])
+        w[9] = math.sqrt(w[0] ** 2 + w[1] ** 2 + w[2] ** 2)
+        moved = w[9] + w[6] * w[7]
+        speed = math.sqrt(vel[k, 0] ** 2 + vel[k, 1] ** 2 + vel[k, 2] ** 2)
+        spin = math.sqrt(ang[k, 0] ** 2 + ang[k, 1] ** 2 + ang[k, 2] ** 2)
+        fast[k] = moved > 0.0 and max(moved, (speed + spin * w[7]) * dt) > SAFETY * smallest
+    best = np.ones(nb)
+    for i in range(nb):
+        if not fast[i]:
+            continue
+        wi = sweep[i]
         x0 = x_start[i]
-        q0 = q_start[i]
-        for k in range(3):
-            dx[k] = pos[i, k] - x0[k]
-        ux, uy, uz, angle = _rotation_between(q0, quat[i])
-        travel = math.sqrt(dx[0] ** 2 + dx[1] ** 2 + dx[2] ** 2)
-        bound = travel + angle * radius
-        speed = math.sqrt(vel[i, 0] ** 2 + vel[i, 1] ** 2 + vel[i, 2] ** 2)
-        spin = math.sqrt(ang[i, 0] ** 2 + ang[i, 1] ** 2 + ang[i, 2] ** 2)
-        if max(bound, (speed + spin * radius) * dt) <= SAFETY * smallest or bound == 0.0:
-            continue
-        best = 1.0
-        for s in range(plane_n.shape[0]):  # planes its swept bounding sphere comes near
-            n0 = (x0[0] * plane_n[s, 0] + x0[1] * plane_n[s, 1] + x0[2] * plane_n[s, 2])
-            n1 = (pos[i, 0] * plane_n[s, 0] + pos[i, 1] * plane_n[s, 1]
-                  + pos[i, 2] * plane_n[s, 2])
-            if min(n0, n1) - plane_d[s] - bounding > SLOP:
+        for s in range(plane_n.shape[0]):  # the planes its swept bounding sphere comes near
+            n0 = x0[0] * plane_n[s, 0] + x0[1] * plane_n[s, 1] + x0[2] * plane_n[s, 2]
+            n1 = pos[i, 0] * plane_n[s, 0] + pos[i, 1] * plane_n[s, 1] + pos[i, 2] * plane_n[s, 2]
+            if min(n0, n1) - plane_d[s] - wi[8] > SLOP:
                 continue
-            best = _impact(i, -1 - s, x0, q0, dx, ux, uy, uz, angle, bound, best, pos, shape,
-                           size, quat, plane_n, plane_d, axes_i, axes_j)
-        if statics:
-            for j in range(nb):
-                if inv_mass[j] != 0.0 or j == i or (shape[j] != SPHERE and shape[j] != BOX):
-                    continue
-                key = min(i, j) * nb + max(i, j)
-                at = np.searchsorted(exclude, key)
-                if at < exclude.shape[0] and exclude[at] == key:
-                    continue
-                # the static body's bounding sphere against the segment the centre swept
-                reach_j = size[j, 0] if shape[j] == SPHERE else math.sqrt(
-                    size[j, 0] ** 2 + size[j, 1] ** 2 + size[j, 2] ** 2)
-                f = 0.0
-                if travel > 0.0:
-                    f = ((pos[j, 0] - x0[0]) * dx[0] + (pos[j, 1] - x0[1]) * dx[1]
-                         + (pos[j, 2] - x0[2]) * dx[2]) / (travel * travel)
-                    f = min(max(f, 0.0), 1.0)
-                cx = x0[0] + f * dx[0] - pos[j, 0]
-                cy = x0[1] + f * dx[1] - pos[j, 1]
-                cz = x0[2] + f * dx[2] - pos[j, 2]
-                if math.sqrt(cx * cx + cy * cy + cz * cz) - bounding - reach_j > SLOP:
-                    continue
-                best = _impact(i, j, x0, q0, dx, ux, uy, uz, angle, bound, best, pos, shape,
-                               size, quat, plane_n, plane_d, axes_i, axes_j)
-        if best >= 1.0:
+            best[i] = _impact(i, -1 - s, best[i], x_start, q_start, sweep, shape, size, plane_n,
+                              plane_d, axes_i, axes_j)
+        for j in range(nb):
+            if inv_mass[j] != 0.0 or not solid[j]:  # static bodies only (module docstring)
+                continue
+            key = min(i, j) * nb + max(i, j)
+            at = np.searchsorted(exclude, key)
+            if at < exclude.shape[0] and exclude[at] == key:
+                continue
+            # the sphere bounding the swept volume (the middle of the centre's segment, half
+            # its length plus the shape's bounding radius) against the static body's
+            cx = x0[0] + 0.5 * wi[0] - pos[j, 0]
+            cy = x0[1] + 0.5 * wi[1] - pos[j, 1]
+            cz = x0[2] + 0.5 * wi[2] - pos[j, 2]
+            if math.sqrt(cx * cx + cy * cy + cz * cz) - 0.5 * wi[9] - wi[8] - sweep[j, 8] > SLOP:
+                continue
+            best[i] = _impact(i, j, best[i], x_start, q_start, sweep, shape, size, plane_n,
+                              plane_d, axes_i, axes_j)
+    count = 0
+    for k in range(nb):
+        if best[k] >= 1.0:
             continue
-        px, py, pz, qw, qx, qy, qz = _pose_at(x0, q0, dx, ux, uy, uz, angle, best)
-        pos[i, 0], pos[i, 1], pos[i, 2] = px, py, pz
-        quat[i, 0], quat[i, 1], quat[i, 2], quat[i, 3] = qw, qx, qy, qz
+        (px, py, pz), (qw, qx, qy, qz) = _pose(k, best[k], x_start, q_start, sweep)
+        pos[k, 0], pos[k, 1], pos[k, 2] = px, py, pz
+        quat[k, 0], quat[k, 1], quat[k, 2], quat[k, 3] = qw, qx, qy, qz
         _box_axes(qw, qx, qy, qz, axes_i)  # rows: the body axes in world, R's columns
         for a in range(3):
             for b in range(3):
                 v = 0.0
-                for k in range(3):
-                    v += axes_i[k, a] * inv_inertia[i, k] * axes_i[k, b]
-                inv_i[i, a, b] = v
-        moved += 1
-    return moved
+                for u in range(3):
+                    v += axes_i[u, a] * inv_inertia[k, u] * axes_i[u, b]
+                inv_i[k, a, b] = v
+        count += 1
+    return count
 
 
 def sweep_back(bodies, planes, exclude, x_start: np.ndarray, q_start: np.ndarray,
