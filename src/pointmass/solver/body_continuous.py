@@ -36,25 +36,28 @@ What (after the substeps and the restitution):
    its separation then: a body that rests or slides on the ground is left alone, one whose
    corner the step would drive deeper than ``SLOP`` past where it started is stopped first.
 5. The body is put at the earliest time of impact's pose; its velocities are kept (Box2D's
-   too): it arrives with them, and the next step's collision finds the contact within its
-   travel and its row stops it.
+   too; the spin in the body's frame): it arrives with them, and the next step's collision
+   finds the contact within its travel and its row stops it.
 
-Momentum: the stage moves positions only, so every body's linear momentum and spin are those
-the solve gave; the angular momentum about a fixed origin, Σ x × p, changes by Δx × p of a
-moved body (nothing when its end velocity is along its step's displacement, as in free
-flight). It acts only against static bodies and planes, which take momentum anyway (as
-Box2D's clamp, which does not conserve it either). Pairs of moving bodies are left to the
-rows, so their collisions keep both momenta to round-off. Tried and taken out: sweeping a
-fast body against the moving bodies' end poses too (Box2D's bullets) took the random scenes
-deep in something from 6 to 3 of 91; sweeping both bodies of a pair back to its time of
-impact made two 0.1 m boxes colliding at 5 m/s lose 2 % of their angular momentum (issue 26
-point 8 asks for 1e-9). Those pairs need their rows refreshed within the step instead.
+Momentum and energy: the stage moves poses only; a body turned back keeps its spin in its
+own frame (as the default stage's projection, ``body_energy.keep_spin``), so its kinetic
+energy, linear momentum and |I·ω| are those the solve gave. The angular momentum about a
+fixed origin changes by Δx × p of a moved body (nothing when its end velocity is along its
+step's displacement, as in free flight) and by its spin's turn back. It acts only against
+static bodies and planes, which take momentum anyway (as Box2D's clamp, which does not
+conserve it either). Pairs of moving bodies are left to the rows, so their collisions keep
+both momenta to round-off. Tried and taken out: sweeping a fast body against the moving
+bodies' end poses too (Box2D's bullets) took the random scenes deep in something from 6 to 3
+of 91; sweeping both bodies of a pair back to its time of impact made two 0.1 m boxes
+colliding at 5 m/s lose 2 % of their angular momentum (issue 26 point 8 asks for 1e-9).
+Those pairs need their rows refreshed within the step instead.
 
 Measured (dt 1/60; before → after): the thin wall (tests/physics/rigid/test_thin_wall.py,
 boxes and spheres, 0°–60°, 50–500 m/s, 16 phases): rough boxes passed in up to 4 of 16
 phases and sank up to 106 mm into the wall, smooth ones up to 37 mm → none passes, deepest
-overlap at a step's end 2.1 mm; benchmarks/rigid_fuzz.py's joint-free scenes ending a step
-> 2 cm deep: 28 → 6 of 91 (the five left are pairs of moving bodies).
+overlap at a step's end 2.85 mm rough, 0.11 mm smooth; benchmarks/rigid_fuzz.py's
+joint-free scenes ending a step > 2 cm deep: 28 → 6 of 91 (the five left are pairs of moving
+bodies).
 """
 
 from __future__ import annotations
@@ -336,9 +339,18 @@ def clamp(pos, quat, vel, ang, inv_mass, inv_inertia, inv_i, shape, size, awake,
         if best[k] >= 1.0:
             continue
         (px, py, pz), (qw, qx, qy, qz) = _pose(k, best[k], x_start, q_start, sweep)
+        # the spin in the body's own frame is kept, so its kinetic energy ½ω·Iω is (a world
+        # ω kept while the body turned back changed it: force-free random scenes gained
+        # energy in a step, 30 of 100 against 27 without the stage)
+        _box_axes(quat[k, 0], quat[k, 1], quat[k, 2], quat[k, 3], axes_j)
+        wb0 = axes_j[0, 0] * ang[k, 0] + axes_j[0, 1] * ang[k, 1] + axes_j[0, 2] * ang[k, 2]
+        wb1 = axes_j[1, 0] * ang[k, 0] + axes_j[1, 1] * ang[k, 1] + axes_j[1, 2] * ang[k, 2]
+        wb2 = axes_j[2, 0] * ang[k, 0] + axes_j[2, 1] * ang[k, 1] + axes_j[2, 2] * ang[k, 2]
         pos[k, 0], pos[k, 1], pos[k, 2] = px, py, pz
         quat[k, 0], quat[k, 1], quat[k, 2], quat[k, 3] = qw, qx, qy, qz
         _box_axes(qw, qx, qy, qz, axes_i)  # rows: the body axes in world, R's columns
+        for u in range(3):
+            ang[k, u] = wb0 * axes_i[0, u] + wb1 * axes_i[1, u] + wb2 * axes_i[2, u]
         for a in range(3):
             for b in range(3):
                 v = 0.0

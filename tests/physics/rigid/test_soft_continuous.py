@@ -76,6 +76,26 @@ def test_a_box_spinning_into_the_ground_stops_before_its_corner_passes_the_slop(
     assert SLOP - TOLERANCE <= depth <= SLOP
     assert 0.0 < angle < 0.9
     assert b.position[0].tolist() == [0.0, 0.05, 0.0]  # it did not move: only turned
+    assert b.angular_velocity[0] == pytest.approx([0.0, 0.0, 0.9 / DT], abs=1e-9)
+
+
+def test_a_body_turned_back_keeps_its_spin_in_its_own_frame_and_its_energy():
+    # a flat box spinning about a tilted axis, its step ending through the ground: turned
+    # back, its kinetic energy ½ω·Iω (I not isotropic) and |I·ω| are unchanged
+    world, ground, _ = _world(Box((0.2, 0.05, 0.1)), (0.0, 0.3, 0.0),
+                              velocity=(1.0, -30.0, 0.0), spin=(20.0, 35.0, -10.0))
+    b = world.bodies
+    x0, q0 = b.position.copy(), b.orientation.copy()
+    b.position[0] += b.velocity[0] * DT
+    b.orientation[0] = quat_from_axis_angle(np.array([0.3, 0.8, -0.2]) / np.linalg.norm(
+        [0.3, 0.8, -0.2]), 0.7)
+    b.update_world_inertia()
+    energy = world.kinetic_energy()
+    spin = np.linalg.norm(np.linalg.solve(b.inv_inertia_world[0], b.angular_velocity[0]))
+    assert _sweep(world, ground, x0, q0) == 1
+    assert world.kinetic_energy() == pytest.approx(energy, rel=1e-12)
+    after = np.linalg.norm(np.linalg.solve(b.inv_inertia_world[0], b.angular_velocity[0]))
+    assert after == pytest.approx(spin, rel=1e-12)
 
 
 @pytest.mark.parametrize("shape", [Box((0.05, 0.05, 0.05)), Sphere(0.05)])
