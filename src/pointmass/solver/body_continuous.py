@@ -47,17 +47,16 @@ step's displacement, as in free flight) and by its spin's turn back. It acts onl
 static bodies and planes, which take momentum anyway (as Box2D's clamp, which does not
 conserve it either). Pairs of moving bodies are left to the rows, so their collisions keep
 both momenta to round-off. Tried and taken out: sweeping a fast body against the moving
-bodies' end poses too (Box2D's bullets) took the random scenes deep in something from 6 to 3
-of 91; sweeping both bodies of a pair back to its time of impact made two 0.1 m boxes
-colliding at 5 m/s lose 2 % of their angular momentum (issue 26 point 8 asks for 1e-9).
-Those pairs need their rows refreshed within the step instead.
+bodies' end poses too (Box2D's bullets) took the random scenes deep in something from 6 (as
+then measured) to 3 of 91; sweeping both bodies of a pair back to its time of impact made
+two 0.1 m boxes colliding at 5 m/s lose 2 % of their angular momentum (issue 26 point 8 asks
+for 1e-9). Those pairs need their rows refreshed within the step instead.
 
 Measured (dt 1/60; before → after): the thin wall (tests/physics/rigid/test_thin_wall.py,
 boxes and spheres, 0°–60°, 50–500 m/s, 16 phases): rough boxes passed in up to 4 of 16
 phases and sank up to 106 mm into the wall, smooth ones up to 37 mm → none passes, deepest
 overlap at a step's end 2.85 mm rough, 0.11 mm smooth; benchmarks/rigid_fuzz.py's
-joint-free scenes ending a step > 2 cm deep: 28 → 6 of 91 (the five left are pairs of moving
-bodies).
+joint-free scenes ending a step > 2 cm deep: 28 → 5 of 91 (each a pair of moving bodies).
 """
 
 from __future__ import annotations

@@ -52,7 +52,7 @@ body held up by a force ends each step at v = −(S−1)/2·g·h (a damped sprin
 reads it); collision runs once a step, so fast bodies could end steps deep in what no row
 followed: the world's continuous stage after this step (``body_continuous``) moves them back
 to their time of impact with static bodies and planes (no box passes the thin wall now), but
-pairs of moving bodies can still end a step deep (6 of 91 random scenes); the
+pairs of moving bodies can still end a step deep (5 of 91 random scenes); the
 fracture demo reads one substep's impulse; and random jointed scenes still explode with it
 (``joint_soft``'s docstring has the counts). Tried and taken out: warm starting across steps
 only the points that touch, without friction, took force-free random scenes from 15 to 2 of
