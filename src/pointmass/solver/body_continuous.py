@@ -55,7 +55,7 @@ for 1e-9). Those pairs need their rows refreshed within the step instead.
 Measured (dt 1/60; before → after): the thin wall (tests/physics/rigid/test_thin_wall.py,
 boxes and spheres, 0°–60°, 50–500 m/s, 16 phases): rough boxes passed in up to 4 of 16
 phases and sank up to 106 mm into the wall, smooth ones up to 37 mm → none passes, deepest
-overlap at a step's end 2.85 mm rough, 0.11 mm smooth; benchmarks/rigid_fuzz.py's
+overlap at a step's end 2.91 mm rough, 0.14 mm smooth; benchmarks/rigid_fuzz.py's
 joint-free scenes ending a step > 2 cm deep: 28 → 5 of 91 (each a pair of moving bodies).
 """
 

@@ -131,8 +131,8 @@ def test_no_shot_passes_through_a_thin_wall(shape, reading, spin):
 #: stage (``solver/body_continuous.py``) puts a fast body back where its step first comes
 #: within the slop of a static body, and lets a touching one end a step at most the slop
 #: deeper than it began it: the bound on the deepest overlap. Measured: none passes; the
-#: deepest 2.85 mm rough (μ 0.5: the spinning tumbled box, 15°, 100 m/s; 0.35 mm otherwise),
-#: 0.11 mm smooth. Before the stage, rough boxes passed in up to 4 of 16 phases (aligned
+#: deepest 2.91 mm rough (μ 0.5: the spinning tumbled box, 15°, 100 m/s),
+#: 0.14 mm smooth. Before the stage, rough boxes passed in up to 4 of 16 phases (aligned
 #: 15°–30° and rotated 45° at 200–500 m/s, the spinning box at 15°–45°) and sank up to
 #: 106 mm into the wall; smooth ones passed in none but sank up to 37 mm.
 SOFT_OVERLAP = SLOP
