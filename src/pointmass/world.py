@@ -26,6 +26,7 @@ from .rigid.joints import Joint
 from .rigid.shapes import Box, Sphere
 from .rigid.step import integrate_positions, integrate_velocities, spin_error
 from .solver import ImpulseHistory, Solver, SolverSettings, SolveStats, body_soft
+from .solver.body_continuous import sweep_back
 from .solver.body_late import project_late
 from .stability import SpringCheck, jump_check, needs_jump_check
 from .step_stats import StepStats
@@ -542,13 +543,16 @@ class World:
     def _substep_bodies_soft(self, dt: float):
         """The rigid bodies' substep: the first kick (gravity, forces, torques over
         dt / ``body_soft.SUBSTEPS``), contacts once, then the soft step's substeps
-        (``solver/body_soft.py``: kick, warm start, soft solve, drift, relax; restitution).
+        (``solver/body_soft.py``: kick, warm start, soft solve, drift, relax; restitution),
+        then its continuous collision (``solver/body_continuous.py``: a fast body back to
+        where its step first meets what the collision pass did not foresee).
         Particles with a radius that touch a body join the stage as bodies without inertia
         (``rigid/particle_body.py``); with none touching, the stage sees the bodies alone, as
         in a world without particles. Sleeping bodies are skipped throughout
         (``rigid/sleep.py``)."""
         b = self.bodies
         h = dt / body_soft.SUBSTEPS
+        x_start, q_start = b.position.copy(), b.orientation.copy()  # the sweep's start
         kept, acc = self._apply_body_forces(dt)
         p = self.particles
         integrated = p.awake.copy()  # the particles the integration moved (and kicked by dt)
@@ -570,6 +574,11 @@ class World:
             packed.take_positions(b, p)
             b.velocity[:] = packed.velocity[:b.count]
             p.velocity[packed.selected] = packed.velocity[b.count:]
+        # what the step's one collision pass did not foresee: a fast body is put back where
+        # it first meets a static body or a plane (``solver/body_continuous.py``)
+        planes = [g for g in self.contact_generators if isinstance(g, Plane)]
+        exclude = self.joints.pair_keys(b.count) if self.joints else None
+        sweep_back(b, planes, exclude, x_start, q_start, dt)
         self._body_rows = rows
         return rows
 

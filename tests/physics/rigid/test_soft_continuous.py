@@ -1,0 +1,198 @@
+"""The soft step's continuous collision (``solver/body_continuous.py``): a fast body is put back
+where its step first brings it within the slop of a static body or a plane, with its
+velocities kept; and, with it, how many of issue 30's random scenes end a step deep in
+something (the thin wall, issue 26 point 7, is in test_thin_wall.py).
+
+The stage is checked against the geometry of the sweep: a box translating at a wall stops with
+its face ``SLOP`` from it (the advancement's tolerance apart), a spinning box stops where its
+corner would pass the slop, and a body that only slides or rests is left where it is."""
+
+from __future__ import annotations
+
+import math
+import sys
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+import pointmass as pm
+from pointmass.rigid.quaternion import quat_from_axis_angle
+from pointmass.rigid.shapes import Box, Sphere
+from pointmass.solver.body_continuous import SLOP, TOLERANCE, sweep_back
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[3] / "benchmarks"))
+import rigid_fuzz as fuzz
+
+DT = 1.0 / 60.0
+
+
+def _world(shape, at, velocity=(0.0, 0.0, 0.0), spin=(0.0, 0.0, 0.0),
+           orientation=(1.0, 0.0, 0.0, 0.0)):
+    """A 0.1 m body at ``at`` by a ground plane y = 0, no gravity, the soft step."""
+    world = pm.World(gravity=(0.0, 0.0, 0.0), body_step="soft")
+    ground = pm.Ground(0.0)
+    world.add(ground)
+    body = world.add_body(shape, at, orientation, mass=1.0, velocity=velocity,
+                          angular_velocity=spin)
+    return world, ground, body
+
+
+def _sweep(world, ground, x_start, q_start):
+    return sweep_back(world.bodies, [ground], None, x_start, q_start, DT)
+
+
+def test_a_box_that_ends_through_the_ground_stops_at_the_slop_with_its_velocity():
+    # a 0.1 m box falling at 60 m/s (1 m a step), put where its straight step would end
+    world, ground, body = _world(Box((0.05, 0.05, 0.05)), (0.3, 0.5, 0.0),
+                                 velocity=(3.0, -60.0, 0.0))
+    b = world.bodies
+    x0, q0 = b.position.copy(), b.orientation.copy()
+    b.position[0] += b.velocity[0] * DT
+    velocity, spin = b.velocity.copy(), b.angular_velocity.copy()
+    assert _sweep(world, ground, x0, q0) == 1
+    # the lowest face SLOP above the ground, on the straight line of the step
+    gap = body.position[1] - 0.05
+    assert SLOP - 1e-12 <= gap <= SLOP + TOLERANCE
+    t = (0.5 - body.position[1]) / (60.0 * DT)
+    assert body.position[0] == pytest.approx(0.3 + 3.0 * DT * t, rel=1e-12)
+    # positions only: the momentum and spin the solve gave are kept
+    assert b.velocity.tolist() == velocity.tolist()
+    assert b.angular_velocity.tolist() == spin.tolist()
+
+
+def test_a_box_spinning_into_the_ground_stops_before_its_corner_passes_the_slop():
+    # resting face down on the ground, turned by 0.9 rad about z in one step: a corner digs
+    # 0.05·(√2·sin(0.9 + π/4) − 1) ≈ 2.1 cm below the ground at the step's end
+    world, ground, _ = _world(Box((0.05, 0.05, 0.05)), (0.0, 0.05, 0.0),
+                                 spin=(0.0, 0.0, 0.9 / DT))
+    b = world.bodies
+    x0, q0 = b.position.copy(), b.orientation.copy()
+    b.orientation[0] = quat_from_axis_angle(np.array([0.0, 0.0, 1.0]), 0.9)
+    assert _sweep(world, ground, x0, q0) == 1
+    # the turn it stopped at: its lowest corner SLOP below where it started (at the ground)
+    angle = 2.0 * math.atan2(np.linalg.norm(b.orientation[0, 1:]), b.orientation[0, 0])
+    depth = 0.05 * (math.sqrt(2.0) * math.sin(angle + math.pi / 4.0) - 1.0)
+    assert SLOP - TOLERANCE <= depth <= SLOP
+    assert 0.0 < angle < 0.9
+    assert b.position[0].tolist() == [0.0, 0.05, 0.0]  # it did not move: only turned
+    assert b.angular_velocity[0] == pytest.approx([0.0, 0.0, 0.9 / DT], abs=1e-9)
+
+
+def test_a_body_turned_back_keeps_its_spin_in_its_own_frame_and_its_energy():
+    # a flat box spinning about a tilted axis, its step ending through the ground: turned
+    # back, its kinetic energy ½ω·Iω (I not isotropic) and |I·ω| are unchanged
+    world, ground, _ = _world(Box((0.2, 0.05, 0.1)), (0.0, 0.3, 0.0),
+                              velocity=(1.0, -30.0, 0.0), spin=(20.0, 35.0, -10.0))
+    b = world.bodies
+    x0, q0 = b.position.copy(), b.orientation.copy()
+    b.position[0] += b.velocity[0] * DT
+    b.orientation[0] = quat_from_axis_angle(np.array([0.3, 0.8, -0.2]) / np.linalg.norm(
+        [0.3, 0.8, -0.2]), 0.7)
+    b.update_world_inertia()
+    energy = world.kinetic_energy()
+    spin = np.linalg.norm(np.linalg.solve(b.inv_inertia_world[0], b.angular_velocity[0]))
+    assert _sweep(world, ground, x0, q0) == 1
+    assert world.kinetic_energy() == pytest.approx(energy, rel=1e-12)
+    after = np.linalg.norm(np.linalg.solve(b.inv_inertia_world[0], b.angular_velocity[0]))
+    assert after == pytest.approx(spin, rel=1e-12)
+
+
+@pytest.mark.parametrize("shape", [Box((0.05, 0.05, 0.05)), Sphere(0.05)])
+def test_a_body_sliding_fast_on_the_ground_is_left_alone(shape):
+    # 30 m/s along the ground (0.5 m a step, 10 half-extents), touching it 0.1 mm deep
+    world, ground, _ = _world(shape, (0.0, 0.0499, 0.0), velocity=(30.0, 0.0, 0.0))
+    b = world.bodies
+    x0, q0 = b.position.copy(), b.orientation.copy()
+    b.position[0, 0] += 30.0 * DT
+    end = b.position.copy()
+    assert _sweep(world, ground, x0, q0) == 0
+    assert b.position.tolist() == end.tolist()
+
+
+def test_a_fast_box_stops_at_a_static_box_wall_it_would_pass():
+    # a 0.1 m box at 500 m/s (8.3 m a step) through a 5 cm static wall centred at x = 0
+    world = pm.World(gravity=(0.0, 0.0, 0.0), body_step="soft")
+    world.add_body(Box((0.025, 1.0, 1.0)), (0.0, 0.0, 0.0), mass=math.inf)
+    turned = quat_from_axis_angle(np.array([0.0, 1.0, 0.0]), 0.4)
+    body = world.add_body(Box((0.05, 0.05, 0.05)), (-1.0, 0.0, 0.0), turned, mass=1.0,
+                          velocity=(500.0, 0.0, 0.0))
+    b = world.bodies
+    x0, q0 = b.position.copy(), b.orientation.copy()
+    b.position[1, 0] += 500.0 * DT
+    assert sweep_back(b, [], None, x0, q0, DT) == 1
+    # the turned box's leading edge, 0.05·(cos 0.4 + sin 0.4) ahead of its centre, SLOP (the
+    # face-axis gap, exact here) short of the wall's face
+    lead = 0.05 * (math.cos(0.4) + math.sin(0.4))
+    gap = -0.025 - (body.position[0] + lead)
+    assert SLOP - 1e-12 <= gap <= SLOP + TOLERANCE
+
+
+def test_two_moving_boxes_keep_both_momenta_through_a_fast_collision():
+    # the stage leaves pairs of moving bodies to the rows: 0.1 m boxes at ±60 m/s (12 of
+    # their half-extents a step), off centre, one spinning, no gravity, e 0, μ 0.5 (issue 26
+    # point 8 with fast bodies). (With the other box spinning at 30 rad/s too, the soft step
+    # itself, before this stage, drifts by 0.10 relative: not this stage's, left to the lead.)
+    world = pm.World(gravity=(0.0, 0.0, 0.0), body_step="soft")
+    world.add_body(Box((0.05, 0.05, 0.05)), (-1.0, 0.02, 0.0), mass=1.0,
+                   velocity=(60.0, 0.0, 0.0))
+    world.add_body(Box((0.05, 0.05, 0.05)), (1.0, -0.02, 0.01), mass=2.0,
+                   velocity=(-60.0, 0.0, 0.0), angular_velocity=(5.0, 0.0, 0.0))
+
+    def momenta():
+        b = world.bodies
+        m = 1.0 / b.inv_mass[:, None]
+        p = (m * b.velocity).sum(axis=0)
+        spin = [np.linalg.solve(b.inv_inertia_world[i], b.angular_velocity[i])
+                for i in range(b.count)]
+        return p, (np.cross(b.position, m * b.velocity) + spin).sum(axis=0)
+
+    p0, l0 = momenta()
+    for _ in range(30):
+        world.step(DT)
+    p1, l1 = momenta()
+    assert np.abs(p1 - p0).max() <= 1e-9 * np.abs(p0).max() + 1e-12
+    assert np.abs(l1 - l0).max() <= 1e-9 * np.linalg.norm(l0) + 1e-12
+
+
+# --- issue 30: random scenes that end a step deep in something --------------------------------
+
+def _joint_free(first: int, last: int) -> list[int]:
+    return [s for s in range(first, last) if not len(fuzz.build(s)[0].joints)]
+
+
+def _deep(seeds: list[int], steps: int) -> list[int]:
+    deep = []
+    for seed in seeds:
+        o = fuzz.run(seed, steps, body_step="soft")
+        assert o.refused is None, f"seed {seed}: {o.refused}"
+        if o.deep is not None:
+            deep.append(seed)
+    return deep
+
+
+#: Joint-free scenes where, before this stage, a fast body ended a step > 2 cm inside a wall
+#: or the ground within 20 steps (seed: that step): boxes of 2.5–35 cm at 1.4–26 of their
+#: half-extents a step, spinning up to 190 rad/s.
+EARLY_DEEP = {31: 7, 54: 15, 71: 15, 79: 9, 103: 5, 128: 1, 189: 12, 211: 16, 216: 15,
+              223: 14, 243: 18, 265: 3, 278: 12, 297: 10}
+
+
+def test_random_scenes_that_went_deep_in_a_wall_do_not():
+    deep = _deep(sorted(EARLY_DEEP), 20)
+    assert deep == [], deep
+
+
+#: Joint-free scenes of seeds 0–299 (91 scenes, issue 30's count), 300 steps, with a step
+#: ending > 2 cm deep. Target ≤ 1 %. Measured: 5 of 91 (seeds 74, 79, 140, 217, 278), each a
+#: pair of moving bodies (2.5–14 cm; a small fast body and a large one of very different
+#: mass). Before this stage 28 of 91, 27 of them a fast body in a wall or the ground (the
+#: last session's note: 37; the default stage: 4). Pairs of moving bodies are left to the
+#: rows, for momentum (``body_continuous``'s docstring).
+SLOW_DEEP = 5
+
+
+@pytest.mark.slow
+def test_random_scenes_deep_overlaps_ratchet_300_steps():
+    deep = _deep(_joint_free(0, 300), fuzz.STEPS)
+    assert len(deep) <= SLOW_DEEP, deep
