@@ -780,13 +780,14 @@ def step(view, bodies, contacts: BodyContacts, acceleration: np.ndarray,
             warm_start(r.start, c.a, c.b, c.normal, r.t1, r.t2, v.inv_mass, v.velocity,
                        v.angular_velocity, r.impulse, r.jt1, r.jt2, r.jtw, r.arm, r.farm)
             passes += _pass(v, c, r, inv_h, True, soft, static, SOLVE_PASSES)
-        if jointed:
-            passes += joint_soft.solve(v, joints, jr, False, (lambda: _pass(
-                v, c, r, inv_h, True, soft, static)) if c.count else None)
-        if c.count:  # friction within the solve's cone, in this pose (``soft_energy``)
+        if c.count:  # friction within the solve's cone, in this pose (``soft_energy``),
+            # before the joints' solve, so the velocity it takes back is one they see
             soft_energy.friction_cone(r.start, c.a, c.b, c.normal, r.t1, r.t2, r.fmu, r.radius,
                                       r.mass_n, v.inv_mass, v.velocity, v.angular_velocity,
                                       r.impulse, r.jt1, r.jt2, r.jtw, r.farm)
+        if jointed:
+            passes += joint_soft.solve(v, joints, jr, False, (lambda: _pass(
+                v, c, r, inv_h, True, soft, static)) if c.count else None)
         bad = integrate_positions(v.position, v.orientation, v.velocity, v.angular_velocity,
                                   v.inv_inertia, v.inv_inertia_world, h, awake)
         if bad >= 0:

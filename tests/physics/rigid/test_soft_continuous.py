@@ -196,3 +196,34 @@ SLOW_DEEP = 5
 def test_random_scenes_deep_overlaps_ratchet_300_steps():
     deep = _deep(_joint_free(0, 300), fuzz.STEPS)
     assert len(deep) <= SLOW_DEEP, deep
+
+
+def test_bodies_held_by_a_joint_go_back_together():
+    # two 0.1 m boxes ball-jointed edge to edge, falling at 60 m/s in a straight line, one
+    # lower than the other: only the lower one reaches the ground this step; both go back to
+    # its time of impact, so the joint is where it was (moved back alone, the lower box left
+    # its neighbour 0.55 m out of place: the ragdoll demo's bones opened 14–46 mm)
+    world = pm.World(gravity=(0.0, 0.0, 0.0), body_step="soft")
+    ground = pm.Ground(0.0)
+    world.add(ground)
+    low = world.add_body(Box((0.05, 0.05, 0.05)), (0.0, 0.5, 0.0), mass=1.0,
+                         velocity=(0.0, -60.0, 0.0))
+    high = world.add_body(Box((0.05, 0.05, 0.05)), (0.1, 1.2, 0.0), mass=1.0,
+                          velocity=(0.0, -60.0, 0.0))
+    from pointmass.rigid.joints import BallJoint
+    world.add(BallJoint(high, (-0.05, -0.5, 0.0), low, None))  # met at (0.05, 0.7, 0)
+    b = world.bodies
+    x0, q0 = b.position.copy(), b.orientation.copy()
+    b.position[:] += b.velocity * DT  # the step as the solve left it: 1 m down, rigidly
+    exclude = world.joints.pair_keys(b.count)
+    assert sweep_back(b, [ground], exclude, x0, q0, DT) == 2
+    gap = low.position[1] - 0.05
+    assert SLOP - 1e-12 <= gap <= SLOP + TOLERANCE
+    # the same fraction of the step for both: the pair keeps its shape (0.1, 0.7, 0)
+    assert (b.position[1] - b.position[0]).tolist() == pytest.approx([0.1, 0.7, 0.0],
+                                                                       abs=1e-12)
+    assert world.joints.separations().max() < 1e-12
+    # without the joint, only the low box goes back
+    b.position[:] = x0 + b.velocity * DT
+    assert sweep_back(b, [ground], None, x0, q0, DT) == 1
+    assert b.position[1].tolist() == pytest.approx((x0[1] + b.velocity[1] * DT).tolist())
