@@ -68,6 +68,7 @@ from numba import njit
 
 from ..rigid.scalar import qmul, qrot, qrot_inv
 from ..rigid.shapes import BOX, SPHERE
+from ..rigid.sweep import _half_width
 
 #: Box2D's ``B2_LINEAR_SLOP`` [m]: the separation a time of impact stops a body at, and how
 #: much deeper than at the step's start a touching pair may end it. (The collision's
@@ -141,13 +142,6 @@ def _box_axes(qw, qx, qy, qz, out):
 
 
 @njit(cache=True, nogil=True)
-def _reach(ax, h, lx, ly, lz):
-    return (h[0] * abs(ax[0, 0] * lx + ax[0, 1] * ly + ax[0, 2] * lz)
-            + h[1] * abs(ax[1, 0] * lx + ax[1, 1] * ly + ax[1, 2] * lz)
-            + h[2] * abs(ax[2, 0] * lx + ax[2, 1] * ly + ax[2, 2] * lz))
-
-
-@njit(cache=True, nogil=True)
 def _box_box(pa, a, ha, pb, b, hb):
     """The largest gap of two boxes (axes rows a, b) over the 15 separating axes, and that
     axis pointing from B towards A: their distance when apart along a face axis, a lower
@@ -171,7 +165,7 @@ def _box_box(pa, a, ha, pb, b, hb):
                 continue
             lx, ly, lz = lx / n, ly / n, lz / n
         along = dx * lx + dy * ly + dz * lz
-        gap = abs(along) - _reach(a, ha, lx, ly, lz) - _reach(b, hb, lx, ly, lz)
+        gap = abs(along) - _half_width(a, ha, lx, ly, lz) - _half_width(b, hb, lx, ly, lz)
         if gap > best:
             best = gap
             f = -1.0 if along >= 0.0 else 1.0
@@ -186,7 +180,7 @@ def _plane_gap(shape_i, size_i, px, py, pz, qw, qx, qy, qz, nx, ny, nz, offset, 
     if shape_i == SPHERE:
         return d - size_i[0]
     _box_axes(qw, qx, qy, qz, axes_i)
-    return d - _reach(axes_i, size_i, nx, ny, nz)
+    return d - _half_width(axes_i, size_i, nx, ny, nz)
 
 
 @njit(cache=True, nogil=True)
