@@ -58,7 +58,7 @@ class World:
             soft contacts and relax, then restitution; it keeps linear and angular momentum
             exactly, stands towers of 30 boxes and holds joints per substep
             (``solver/joint_soft.py``), but is not the default yet: force-free random scenes
-            gain energy with it (issue 30); see that module).
+            with joints gain energy with it (issue 30); see that module).
 
         settings: The solver's tuning numbers (``pm.SolverSettings``; its defaults when None):
             tolerances, caps on passes, when the exact solve and the threads are used.
