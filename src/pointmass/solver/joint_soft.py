@@ -87,8 +87,8 @@ from dataclasses import dataclass, replace
 import numpy as np
 from numba import njit
 
+from ..rigid.joint_rows import LIMIT, OFF
 from . import joint_solver
-from .joint_stages import LIMIT, OFF
 from .joint_tree import DIRECT as DIRECT_JOINT
 from .joint_tree import OFF as OFF_JOINT
 
