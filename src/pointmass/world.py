@@ -24,14 +24,12 @@ from .rigid.forces import BodyForceGenerator
 from .rigid.joint_set import Joints
 from .rigid.joints import Joint
 from .rigid.shapes import Box, Sphere
-from .rigid.step import (force_acceleration, integrate_positions, integrate_velocities,
-                          spin_error)
+from .rigid.step import force_acceleration, integrate_positions, integrate_velocities, spin_error
 from .solver import ImpulseHistory, Solver, SolverSettings, SolveStats, body_soft
 from .solver.body_continuous import sweep_back
 from .solver.body_late import project_late
 from .stability import SpringCheck, jump_check, needs_jump_check
 from .step_stats import StepStats
-
 
 _NO_SOLVE = SolveStats()  # the particle stages' stats with no particles (frozen)
 
