@@ -173,8 +173,9 @@ def _recall_into(old_keys, order, rank, old_normal, old_tangent, keys, normal, t
 @njit(cache=True, nogil=True)
 def _keep_sorted(keys, normal, tangent):
     """``keep``'s usual case in one compiled call: every key ≥ 0 and the keys already sorted.
-    Returns (whether they were, then copies of keys, normal, tangent and the order and rank,
-    both the identity); with False the caller takes the general path."""
+    ``tangent`` has no rows where none is kept. Returns (whether they were, then copies of
+    keys, normal, tangent and the order and rank, both the identity); with False the caller
+    takes the general path."""
     m = keys.shape[0]
     for c in range(m):
         if keys[c] < 0 or (c > 0 and keys[c] <= keys[c - 1]):
@@ -266,13 +267,14 @@ class ImpulseHistory:
     def keep(self, keys: np.ndarray, normal: np.ndarray, tangent: np.ndarray | None) -> None:
         """Keep this step's impulses of the keyed contacts, sorted by key (``tangent`` None:
         no friction anywhere, nothing to keep)."""
-        if tangent is not None:
-            done, k, n, t, order, rank = _keep_sorted(keys, normal, tangent)
-            if done:
-                self._recalled = None
-                self._keys, self._normal, self._tangent = k, n, t
-                self._order, self._rank = order, rank
-                return
+        done, k, n, t, order, rank = _keep_sorted(
+            keys, normal, _NO_TANGENT if tangent is None else tangent)
+        if done:
+            self._recalled = None
+            self._keys, self._normal = k, n
+            self._tangent = None if tangent is None else t
+            self._order, self._rank = order, rank
+            return
         if keys.shape[0] and keys.min() < 0:
             keyed = keys >= 0
             keys, normal = keys[keyed], normal[keyed]

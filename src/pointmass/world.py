@@ -207,10 +207,10 @@ class World:
 
     def _wake_all(self) -> None:
         b = self.bodies
-        if not b.awake.all():
+        if b.count and not b.awake.all():
             b.wake_islands(np.unique(b.island[~b.awake]))
         p = self.particles
-        if not p.awake.all():
+        if p.count and not p.awake.all():
             p.wake_all()
 
     @property
