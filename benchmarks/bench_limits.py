@@ -252,7 +252,7 @@ def tiny_rows(args, repeats: int) -> None:
     for name, build in tiny_worlds().items():
         steps = 20_000 if not args.quick else 5_000
         tiny = bench_tiny(steps // 10 if "tower" in name else steps, repeats, build)
-        print(f"{name + ', steps/s':60s} {tiny:12.3g}")
+        print(f"{name + ', steps/s':64s} {tiny:12.3g}")
 
 
 if __name__ == "__main__":
