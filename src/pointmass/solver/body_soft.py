@@ -134,6 +134,24 @@ def softness(hertz: float, zeta: float, h: float) -> tuple[float, float, float]:
     return omega / a1, a2 * a3, a3
 
 
+_SOFTNESS: list = [None]  # the last (inputs, soft, static) of ``_softness_rows``
+
+
+def _softness_rows(h: float) -> tuple[np.ndarray, np.ndarray]:
+    """(soft, static): the contact rows' softness (``softness``, then ``CONTACT_SPEED``)
+    against bodies and against scenery for a substep h, made again only when h or a
+    constant changes (a tiny world's step paid for building them every step)."""
+    key = (h, CONTACT_HERTZ, HERTZ_CAP, DAMPING_RATIO, CONTACT_SPEED)
+    last = _SOFTNESS[0]
+    if last is not None and last[0] == key:
+        return last[1], last[2]
+    hertz = min(CONTACT_HERTZ, HERTZ_CAP * (1.0 / h))
+    soft = np.array((*softness(hertz, DAMPING_RATIO, h), CONTACT_SPEED))
+    static = np.array((*softness(2.0 * hertz, DAMPING_RATIO, h), CONTACT_SPEED))
+    _SOFTNESS[0] = (key, soft, static)
+    return soft, static
+
+
 @dataclass
 class SoftRows:
     """One step's rows of the soft step and what it did (the world reads the counts)."""
@@ -542,7 +560,7 @@ def _pass(b, c: BodyContacts, r: _Rows, inv_h: float, use_bias: bool, soft, stat
 @njit(cache=True, nogil=True)
 def contact_step(nb, substeps, h, gravity, soft, static, threshold, pos, quat, vel, ang,
                  inv_mass, inv_inertia, inv_i, awake, lin_d, ang_d, acc, ca, cb, n, r0a, r0b,
-                 depth0, mu, e, impulse, kept, round_a, round_b, total, force, torque):
+                 depth0, mu, e, impulse, kept, shape, total, force, torque):
     """The whole soft step of a world without joints in one compiled call (issue 26: a small
     world pays no Python per substep; measured, the 10-box tower's stage made 38 kernel calls
     a step from Python). ``impulse`` (M,) and ``kept`` (M, 3) come in with the recalled warm
@@ -551,9 +569,16 @@ def contact_step(nb, substeps, h, gravity, soft, static, threshold, pos, quat, v
     the same order, as ``step``'s loop with joints: the results are bit for bit those of that
     loop.
 
+    ``shape`` (``nb``,) the bodies' shapes: which points' anchors do not turn (``_round``).
+
     Returns (passes, deepest overlap, error, body): error 1 is a spin that is not finite after
     a kick, 2 a body that is not finite after a drift (``body`` names it), 0 none."""
     m = ca.shape[0]
+    round_a = np.empty(m, np.bool_)
+    round_b = np.empty(m, np.bool_)
+    for c in range(m):  # ``_round``: particle rows (index >= nb) do not spin anyway
+        round_a[c] = ca[c] < nb and shape[ca[c]] == SPHERE
+        round_b[c] = cb[c] >= 0 and cb[c] < nb and shape[cb[c]] == SPHERE
     start = np.empty(m + 1, np.int64)
     k = bm.find_manifolds(ca, cb, n, start) if m else 0
     start = start[:k + 1]
@@ -682,12 +707,11 @@ def _contact_step(v, b, c: BodyContacts, acceleration, history: ImpulseHistory, 
         history.recall(c.key, impulse, kept)
     else:
         history.clear()
-    round_a, round_b = _round(v, b, c)
     passes, deepest, error, bad = contact_step(
         b.count, substeps, h, gravity, soft, static, threshold, v.position, v.orientation,
         v.velocity, v.angular_velocity, v.inv_mass, v.inv_inertia, v.inv_inertia_world,
         v.awake, b.linear_damping, b.angular_damping, acceleration, c.a, c.b, c.normal, c.r_a,
-        c.r_b, c.depth, c.friction, c.restitution, impulse, kept, round_a, round_b, c.impulse,
+        c.r_b, c.depth, c.friction, c.restitution, impulse, kept, b.shape, c.impulse,
         b.force, b.torque)
     if error == 1:
         from ..rigid.step import spin_error
@@ -720,9 +744,7 @@ def step(view, bodies, contacts: BodyContacts, acceleration: np.ndarray,
     nb = b.count
     h = dt / substeps
     inv_h = 1.0 / h
-    hertz = min(CONTACT_HERTZ, HERTZ_CAP * inv_h)
-    soft = np.array((*softness(hertz, DAMPING_RATIO, h), CONTACT_SPEED))
-    static = np.array((*softness(2.0 * hertz, DAMPING_RATIO, h), CONTACT_SPEED))
+    soft, static = _softness_rows(h)
     out = SoftRows(c)
     jointed = joints is not None and len(joints) > 0
     if not jointed and compiled:  # the whole step in one compiled call
