@@ -347,7 +347,9 @@ def limit_islands(label, grounded, start, pos, vel, ang, quat, inv_mass, inv_ine
     ½M·V² + ½Ωᵀ·I·Ω and the rest's, and it moves every joint and contact of the island
     without opening it. Scaling the rest keeps P and L exactly, and every row of the relax:
     an equality row (Ċ = 0) is linear in the velocities, and an inequality row's Ċ ≥ t with
-    t ≤ 0 (a speculative contact or an open limit) still holds at s·Ċ ≥ s·t ≥ t."""
+    t ≤ 0 (a speculative contact or an open limit) still holds at s·Ċ ≥ s·t ≥ t. Where the
+    rigid motion alone has more energy than ``start`` the rows did not keep the momenta (an
+    open joint's impulses at its two anchors are a couple): all of it is scaled."""
     k = start.shape[0]
     scaled = 0
     energy = np.zeros(k)
@@ -408,9 +410,14 @@ def limit_islands(label, grounded, start, pos, vel, ang, quat, inv_mass, inv_ine
             rigid = 0.5 * mass * (vv[0] * vv[0] + vv[1] * vv[1] + vv[2] * vv[2]) \
                 + 0.5 * (om[0] * ell[0] + om[1] * ell[1] + om[2] * ell[2])
         rest = e - rigid
-        s = 0.0
-        if rest > 0.0 and start[isl] > rigid:
-            s = min(math.sqrt((start[isl] - rigid) / rest), 1.0)
+        if not (rest > 0.0 and start[isl] > rigid):
+            # its rigid motion alone has more: the rows did not keep its momenta (a joint
+            # opened across a couple), so all of it is scaled, as a grounded island's
+            vv[:] = 0.0
+            om[:] = 0.0
+            rigid = 0.0
+            rest = e
+        s = min(math.sqrt(max(start[isl] - rigid, 0.0) / rest), 1.0) if rest > 0.0 else 1.0
         for i in range(label.shape[0]):
             if label[i] != isl:
                 continue
