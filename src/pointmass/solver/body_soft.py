@@ -58,12 +58,11 @@ stage's exact figures name their stage and are re-derived for this one (tests/ph
 Not yet the default: collision runs once a step, so fast bodies could end steps deep in
 what no row followed: the world's continuous stage after this step (``body_continuous``)
 moves them back to their time of impact with static bodies and planes (no box passes the thin
-wall now), but pairs of moving bodies can still end a step deep (5 of 91 random scenes); and
-force-free random jointed scenes still gain energy in steps (none explodes now:
-``joint_soft``'s docstring has the counts). Force-free random scenes without joints gain no
-kinetic energy in a step (issue 30's 1e-9; ``soft_energy``: the restitution's budget, the
-friction warm start clamped to the solve's cone before the drift, bodies on scenery alone
-capped at their energy after the kick). Tried and taken out: warm starting across steps only
+wall now), but pairs of moving bodies can still end a step deep (5 of 91 random scenes).
+Force-free random scenes gain no kinetic energy in a step, with joints or without (issue 30's
+1e-9; ``soft_energy``: the restitution's budget, the friction warm start clamped to the
+solve's cone before the drift, bodies on scenery alone and islands that a joint holds capped
+at their energy after the kick; ``joint_soft``'s docstring has the jointed counts). Tried and taken out: warm starting across steps only
 the points that touch, without friction (the 30-box tower then walked 32 cm in 60 s).
 """
 
