@@ -62,8 +62,9 @@ wall now), but pairs of moving bodies can still end a step deep (5 of 91 random 
 Force-free random scenes gain no kinetic energy in a step, with joints or without (issue 30's
 1e-9; ``soft_energy``: the restitution's budget, the friction warm start clamped to the
 solve's cone before the drift, bodies on scenery alone and islands that a joint holds capped
-at their energy after the kick; ``joint_soft``'s docstring has the jointed counts). Tried and taken out: warm starting across steps only
-the points that touch, without friction (the 30-box tower then walked 32 cm in 60 s).
+at their energy after the kick; ``joint_soft``'s docstring has the jointed counts). Tried
+and taken out: warm starting across steps only the points that touch, without friction (the
+30-box tower then walked 32 cm in 60 s).
 """
 
 from __future__ import annotations
