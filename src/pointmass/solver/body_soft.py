@@ -58,13 +58,13 @@ stage's exact figures name their stage and are re-derived for this one (tests/ph
 Not yet the default: collision runs once a step, so fast bodies could end steps deep in
 what no row followed: the world's continuous stage after this step (``body_continuous``)
 moves them back to their time of impact with static bodies and planes (no box passes the thin
-wall now), but pairs of moving bodies can still end a step deep (5 of 91 random scenes); and
-force-free random jointed scenes still gain energy in steps (none explodes now:
-``joint_soft``'s docstring has the counts). Force-free random scenes without joints gain no
-kinetic energy in a step (issue 30's 1e-9; ``soft_energy``: the restitution's budget, the
-friction warm start clamped to the solve's cone before the drift, bodies on scenery alone
-capped at their energy after the kick). Tried and taken out: warm starting across steps only
-the points that touch, without friction (the 30-box tower then walked 32 cm in 60 s).
+wall now), but pairs of moving bodies can still end a step deep (5 of 91 random scenes).
+Force-free random scenes gain no kinetic energy in a step, with joints or without (issue 30's
+1e-9; ``soft_energy``: the restitution's budget, the friction warm start clamped to the
+solve's cone before the drift, bodies on scenery alone and islands that a joint holds capped
+at their energy after the kick; ``joint_soft``'s docstring has the jointed counts). Tried
+and taken out: warm starting across steps only the points that touch, without friction (the
+30-box tower then walked 32 cm in 60 s).
 """
 
 from __future__ import annotations
@@ -772,16 +772,25 @@ def step(view, bodies, contacts: BodyContacts, acceleration: np.ndarray,
     jr = joint_soft.prepare(v, joints, h) if jointed else None
     start_pos = v.position[:nb].copy()  # where the forces were found (``kick``)
     turn = np.empty((nb, 3))
-    # restitution returns at most what the contacts absorbed (``soft_energy``): counted where
-    # a point can bounce; with joints, their impulses are in the same velocities (their slice)
-    bouncy = c.count and not jointed and bool((c.restitution > 0.0).any())
+    # restitution returns at most what the substeps' contacts (and joints) absorbed
+    # (``soft_energy``), counted where a point can bounce
+    bouncy = c.count and bool((c.restitution > 0.0).any())
     budget = soft_energy.Budget() if bouncy else None
-    # a body on scenery alone leaves no substep with more energy than it began with (joints
-    # share their bodies' energy: not with them, as the budget)
+    # a body on scenery alone leaves no substep with more energy than it began with
     alone = None
-    if c.count and not jointed:
+    if c.count:
         alone = soft_energy.scenery_only(v.velocity.shape[0], c.a, c.b)
         start_energy = np.zeros(v.velocity.shape[0])
+    if jointed:  # ... nor does an island of bodies that a joint holds (``soft_energy``)
+        label = np.empty(v.velocity.shape[0], np.int64)
+        grounded = np.empty(v.velocity.shape[0], np.bool_)
+        ja = joints.arrays()
+        islands = soft_energy.joint_islands(v.velocity.shape[0], ja.a, ja.b, c.a, c.b,
+                                            v.inv_mass, label, grounded)
+        grounded = grounded[:islands]
+        island_energy = np.zeros(islands)
+        if alone is not None:
+            alone &= label < 0
 
     for i in range(substeps):
         if i > 0:
@@ -793,6 +802,9 @@ def step(view, bodies, contacts: BodyContacts, acceleration: np.ndarray,
                 raise spin_error(b, int(bad), h)
         if budget is not None:
             budget.begin(v)
+        if jointed:
+            soft_energy.island_energies(label, v.velocity, v.angular_velocity, v.orientation,
+                                        v.inv_mass, v.inv_inertia, island_energy)
         if jointed:  # (``joint_soft``: Box2D's joint stages, the tree solved exactly)
             joint_soft.warm_start(v, joints, jr)
         if alone is not None:
@@ -828,6 +840,9 @@ def step(view, bodies, contacts: BodyContacts, acceleration: np.ndarray,
         if jointed:
             passes += joint_soft.solve(v, joints, jr, True, (lambda: _pass(
                 v, c, r, inv_h, False, soft, static)) if c.count else None)
+            soft_energy.limit_islands(label, grounded, island_energy, v.position, v.velocity,
+                                      v.angular_velocity, v.orientation, v.inv_mass,
+                                      v.inv_inertia)
         if budget is not None and c.count:
             budget.relaxed(v)
         if c.count:  # the substep's warm start and passes gave r.impulse in all
