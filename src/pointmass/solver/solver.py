@@ -243,8 +243,11 @@ class Solver:
             velocity_passes += more
             used += used2
         stages.follow_impulses(bod, con, dt)
-        position_passes, measured = self._positions(bod, con, st.projection_tolerance * dt,
+        pcon, slop = _slopped(p.position, anchors, con, st.projection_slop)
+        position_passes, measured = self._positions(bod, pcon, st.projection_tolerance * dt,
                                                     blocks, small, p.position, anchors, dt, st)
+        if slop is not None:  # the depths reported are the contacts' own, not the slop's
+            measured = measured._replace(depth0=measured.depth0 + slop)
         history.keep(contacts.key, con.impulse,
                      con.tangent if contacts.friction.any() else None)
         return SolveStats(contacts=contacts.count, impact_passes=int(impact_passes),
@@ -306,6 +309,17 @@ class Solver:
 
 
 _NO_ANCHORS = np.empty((0, 3))
+
+
+def _slopped(position, anchors, con, slop: float):
+    """The contact set the projection works on: each contact's depth less ``slop``
+    (``stages.slop_depths``; links keep theirs), and the slop given each row (None: none)."""
+    if slop == 0.0:
+        return con, None
+    depth0 = np.empty_like(con.depth0)
+    if stages.slop_depths(position, anchors, con, float(slop), depth0) == 0:
+        return con, None
+    return con._replace(depth0=depth0), con.depth0 - depth0
 
 
 def _remeasured(position, anchors, bod, con, tolerance: float, dt: float,
