@@ -248,7 +248,7 @@ def slop_depths(position, anchor, con, slop, out):
     step somewhere else; projected out at once, it moved the contacts every step and the warm
     start never caught up (the frictionless pits jittered at 0.02-0.03 m/s). Left within the
     slop, the pile keeps its contacts and comes to rest. Returns how many rows got the slop."""
-    ca, cb, n, depth0, bil = con.a, con.b, con.n, con.depth0, con.bil
+    ca, cb, n, depth0, bil, impulse = con.a, con.b, con.n, con.depth0, con.bil, con.impulse
     anchored = anchor.shape[0] > 0
     count = 0
     for c in range(ca.shape[0]):
@@ -259,8 +259,9 @@ def slop_depths(position, anchor, con, slop, out):
             link = ((position[a, 0] - position[b, 0]) * n[c, 0]
                     + (position[a, 1] - position[b, 1]) * n[c, 1]
                     + (position[a, 2] - position[b, 2]) * n[c, 2]) < 0.0
-        out[c] = depth0[c] if link else depth0[c] - slop
-        count += not link
+        resting = (not link) and impulse[c] > 0.0
+        out[c] = depth0[c] - slop if resting else depth0[c]
+        count += resting
     return count
 
 
