@@ -239,16 +239,20 @@ def project_positions(bod, con, tolerance, max_passes):
 
 
 @njit(cache=True, nogil=True)
-def slop_depths(position, anchor, con, slop, out):
-    """Each row's depth as the projection sees it (``out``): a contact's generated depth less
-    ``slop`` (``SolverSettings.projection_slop``: a penetration that small is left where it is,
-    Box2D's linear slop), a link's as generated (a rod, a row from an anchor point, or one
-    whose normal points from a to b: farther apart is deeper, as ``remeasure.has_links`` tells
-    them). Why: a resting pile's velocity passes leave µm of sinking here and there, each
-    step somewhere else; projected out at once, it moved the contacts every step and the warm
-    start never caught up (the frictionless pits jittered at 0.02-0.03 m/s). Left within the
-    slop, the pile keeps its contacts and comes to rest. Returns how many rows got the slop."""
-    ca, cb, n, depth0, bil, impulse = con.a, con.b, con.n, con.depth0, con.bil, con.impulse
+def slop_depths(position, anchor, con, pressed, slop, out):
+    """Each row's depth as the projection sees it (``out``): a resting contact's generated
+    depth less ``slop`` (``SolverSettings.projection_slop``: a penetration that small is left
+    where it is, Box2D's linear slop; resting: it pushed last step, its remembered impulse
+    ``pressed`` > 0, the impact stage's test), any other row's as generated: a contact that
+    only got there (a sphere moved in by hand, an impact) is pushed out entirely, and a link
+    (a rod, a row from an anchor point, or one whose normal points from a to b: farther apart
+    is deeper, as ``remeasure.has_links`` tells them) is held at its length.
+
+    Why: a resting pile's velocity passes leave µm of sinking here and there, each step
+    somewhere else; projected out at once, it moved the contacts every step and the warm start
+    never caught up (the frictionless pits jittered at 0.02-0.03 m/s). Left within the slop,
+    the pile keeps its contacts and comes to rest. Returns how many rows got the slop."""
+    ca, cb, n, depth0, bil = con.a, con.b, con.n, con.depth0, con.bil
     anchored = anchor.shape[0] > 0
     count = 0
     for c in range(ca.shape[0]):
@@ -259,7 +263,7 @@ def slop_depths(position, anchor, con, slop, out):
             link = ((position[a, 0] - position[b, 0]) * n[c, 0]
                     + (position[a, 1] - position[b, 1]) * n[c, 1]
                     + (position[a, 2] - position[b, 2]) * n[c, 2]) < 0.0
-        resting = (not link) and impulse[c] > 0.0
+        resting = (not link) and pressed[c] > 0.0
         out[c] = depth0[c] - slop if resting else depth0[c]
         count += resting
     return count
