@@ -319,9 +319,11 @@ def _slopped(position, anchors, con, pressed, slop: float):
     if slop == 0.0:
         return con, None
     depth0 = np.empty_like(con.depth0)
-    if stages.slop_depths(position, anchors, con, pressed, float(slop), depth0) == 0:
+    given = np.empty_like(con.depth0)
+    if stages.slop_depths(position, anchors, con.a, con.b, con.n, con.depth0, con.bil, pressed,
+                          float(slop), depth0, given) == 0:
         return con, None
-    return con._replace(depth0=depth0), con.depth0 - depth0
+    return con._replace(depth0=depth0), given
 
 
 def _remeasured(position, anchors, bod, con, tolerance: float, dt: float,
