@@ -45,17 +45,17 @@ class SolverSettings:
         max_projection_passes: Cap on the projection passes of a small set.
         max_large_projection_passes: ... and of a large set (measured on the settled 10 000
             pit: passes 5–15 cost 70 % of the projection for 0.2 mm).
-        projection_slop: Penetration [m] the projection leaves in a contact that carries
-            load (its impulse this step > 0: a particle resting on what it touches; not links,
-            not a contact that only got there): Box2D's linear slop (``b2_linearSlop``, 5 mm,
-            in its position solver ``C = β·(separation + slop)``). Without it every step's
+        projection_slop: Penetration [m] the projection leaves in a resting contact (it
+            pushed last step, as the impact stage tells resting from colliding; not links,
+            not a contact that only got there, which is pushed out entirely): Box2D's linear
+            slop (``b2_linearSlop``, 5 mm, in its position solver ``C = β·(separation + slop)``). Without it every step's
             solve left a few µm of sinking somewhere in a pile that the projection pushed out,
             moving the pile's contacts each step, so the warm start never caught up:
             frictionless pits of 100 and 1 000 spheres jittered at 0.02-0.03 m/s for ever
             (issue 26 point 4). Measured with the slop on every contact (pits of bench_peers,
             sleep off, mean speed at 40 s): 0.1 mm 0.022 (N = 100) / 0.0002 (N = 1000); 0.25 mm
-            0.0004 / -; 0.5 mm 0.0004 / 0.0002; on loaded contacts only, 0.5 mm: asleep by 10 s
-            (N = 100) and 30 s (N = 1000). 0: none.
+            0.0004 / -; 0.5 mm 0.0004 / 0.0002; on resting contacts only, 0.5 mm, sleep on:
+            asleep by 10 s (N = 100) and 30 s (N = 1000). 0: none.
         max_newton_projections: Newton iterations of a small set's projection on its contacts
             measured again (``remeasure.py``).
         line_search_halvings: Halvings of one Newton step looking for one that lowers the
