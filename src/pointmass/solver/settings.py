@@ -48,9 +48,10 @@ class SolverSettings:
         projection_slop: Penetration [m] the projection leaves in a resting contact (it
             pushed last step, as the impact stage tells resting from colliding; not links,
             not a contact that only got there, which is pushed out entirely): Box2D's linear
-            slop (``b2_linearSlop``, 5 mm, in its position solver ``C = β·(separation + slop)``). Without it every step's
-            solve left a few µm of sinking somewhere in a pile that the projection pushed out,
-            moving the pile's contacts each step, so the warm start never caught up:
+            slop (``b2_linearSlop``, 5 mm, in its position solver ``C = β·(separation +
+            slop)``). Without it every step's solve left a few µm of sinking somewhere in a
+            pile that the projection pushed out, moving the pile's contacts each step, so the
+            warm start never caught up:
             frictionless pits of 100 and 1 000 spheres jittered at 0.02-0.03 m/s for ever
             (issue 26 point 4). Measured with the slop on every contact (pits of bench_peers,
             sleep off, mean speed at 40 s): 0.1 mm 0.022 (N = 100) / 0.0002 (N = 1000); 0.25 mm
