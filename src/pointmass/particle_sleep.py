@@ -147,7 +147,7 @@ def touched_by_bodies(n, ca, cb, normal, depth, selected, pvel, bvel, bang, r_b,
 def kick(velocity, acceleration, force, inv_mass, damping, woken, g, dt):
     """The velocity half of the integration for the particles of mask ``woken`` (woken after
     the integration, by a row that is solved in this substep): v += a·dt, v *= d^dt, their
-    accumulated force consumed. Their position stays: the rows were measured there."""
+    accumulated force consumed. Their position moves after (``drift``)."""
     for i in range(velocity.shape[0]):
         if not woken[i]:
             continue
@@ -162,6 +162,33 @@ def kick(velocity, acceleration, force, inv_mass, damping, woken, g, dt):
             keep = d**dt
             for k in range(3):
                 velocity[i, k] *= keep
+
+
+@njit(cache=True, nogil=True)
+def drift(position, velocity, woken, dt, ca, cb, normal, depth, count):
+    """The position half of the integration for the particles of mask ``woken`` (kicked by
+    ``kick`` after the rows were found): x += v·dt, and the depth of each of the first
+    ``count`` rows patched by that move along its normal (the solver's linear model,
+    ``kernels.py``), so the rows read as if measured after the move, as every awake
+    particle's are. Why: the velocity stage takes a row's depth before the step as
+    ``depth + vs·dt``; for a woken particle that did not move, a resting contact read as a
+    gap of g·dt² that the whole woken pile fell through in one step (measured: a frictional
+    pile of 40 woke at 0.16 m/s, = g·dt, and bounced)."""
+    for c in range(count):
+        a = ca[c]
+        b = cb[c]
+        moved = 0.0
+        if woken[a]:
+            for k in range(3):
+                moved += velocity[a, k] * dt * normal[c, k]
+        if b >= 0 and woken[b]:
+            for k in range(3):
+                moved -= velocity[b, k] * dt * normal[c, k]
+        depth[c] -= moved
+    for i in range(position.shape[0]):
+        if woken[i]:
+            for k in range(3):
+                position[i, k] += velocity[i, k] * dt
 
 
 @njit(cache=True, nogil=True)

@@ -68,6 +68,8 @@ def wake_touched(world: World, live: np.ndarray, g: np.ndarray, dt: float) -> No
         woken = wake_particles(world, out)
         psleep.kick(p.velocity, p.acceleration, p.force, p.inv_mass, p.damping, woken, g,
                     float(dt))
+        psleep.drift(p.position, p.velocity, woken, float(dt), c.a, c.b, c.normal,
+                     c.penetration, c.count)
         live = psleep.active(p)
     asleep = ~p.awake
     p.force[asleep] = 0.0  # the accumulator is consumed, as by the integration

@@ -218,6 +218,7 @@ class Solver:
         threshold = float(self.restitution_threshold)
         st = self.settings
         history.recall(contacts.key, con.impulse, con.tangent)
+        pressed = con.impulse.copy()  # last step's impulses: which contacts rest (the slop)
         blocks = block_rows(con.a, con.b, p.position) \
             if contacts.count >= st.parallel_min_contacts else None
         impact_passes, hits = stages.impacts(bod, con, dt, threshold, st.impact_tolerance,
@@ -243,8 +244,11 @@ class Solver:
             velocity_passes += more
             used += used2
         stages.follow_impulses(bod, con, dt)
-        position_passes, measured = self._positions(bod, con, st.projection_tolerance * dt,
+        pcon, slop = _slopped(p.position, anchors, con, pressed, st.projection_slop)
+        position_passes, measured = self._positions(bod, pcon, st.projection_tolerance * dt,
                                                     blocks, small, p.position, anchors, dt, st)
+        if slop is not None:  # the depths reported are the contacts' own, not the slop's
+            measured = measured._replace(depth0=measured.depth0 + slop)
         history.keep(contacts.key, con.impulse,
                      con.tangent if contacts.friction.any() else None)
         return SolveStats(contacts=contacts.count, impact_passes=int(impact_passes),
@@ -306,6 +310,20 @@ class Solver:
 
 
 _NO_ANCHORS = np.empty((0, 3))
+
+
+def _slopped(position, anchors, con, pressed, slop: float):
+    """The contact set the projection works on: each resting contact's depth (``pressed``:
+    last step's impulse > 0) less ``slop`` (``stages.slop_depths``; links and other rows keep
+    theirs), and the slop given each row (None: none)."""
+    if slop == 0.0:
+        return con, None
+    depth0 = np.empty_like(con.depth0)
+    given = np.empty_like(con.depth0)
+    if stages.slop_depths(position, anchors, con.a, con.b, con.n, con.depth0, con.bil, pressed,
+                          float(slop), depth0, given) == 0:
+        return con, None
+    return con._replace(depth0=depth0), given
 
 
 def _remeasured(position, anchors, bod, con, tolerance: float, dt: float,

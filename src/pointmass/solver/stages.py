@@ -8,6 +8,8 @@ Each stage is a plain loop over the contacts, compiled with numba. It takes the 
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 from numba import njit
 
@@ -234,6 +236,42 @@ def project_positions(bod, con, tolerance, max_passes):
         if largest <= tolerance:
             break
     return passes, largest
+
+
+@njit(cache=True, nogil=True)
+def slop_depths(position, anchor, ca, cb, n, depth0, bil, pressed, slop, out, given):
+    """Each row's depth as the projection sees it (``out``): a resting contact's generated
+    depth less ``slop`` (``SolverSettings.projection_slop``: a penetration that small is left
+    where it is, Box2D's linear slop; resting: it pushed last step, its remembered impulse
+    ``pressed`` > 0, the impact stage's test), any other row's as generated: a contact that
+    only got there (a sphere moved in by hand, an impact) is pushed out entirely, and a link
+    (a rod, a row from an anchor point, or one whose normal points from a to b: farther apart
+    is deeper, as ``remeasure.has_links`` tells them) is held at its length.
+
+    Why: a resting pile's velocity passes leave µm of sinking here and there, each step
+    somewhere else; projected out at once, it moved the contacts every step and the warm start
+    never caught up (the frictionless pits jittered at 0.02-0.03 m/s). Left within the slop,
+    the pile keeps its contacts and comes to rest. ``given``: the slop each row got.
+    Returns how many rows got it. (Arrays, not the ``ContactSet``, and the geometry read only
+    for rows that pushed: over the 10 000 pit's first 300 steps, 0.93 ms a call with the
+    namedtuple, 0.75 with arrays, 0.58 reading positions only where pushed.)"""
+    anchored = anchor.shape[0] > 0
+    count = 0
+    for c in range(ca.shape[0]):
+        # only a row that pushed last step can rest: the others skip the geometry below
+        resting = pressed[c] > 0.0 and not bil[c]
+        if resting and anchored:
+            resting = math.isnan(anchor[c, 0])
+        b = cb[c]
+        if resting and b >= 0:
+            a = ca[c]
+            resting = ((position[a, 0] - position[b, 0]) * n[c, 0]
+                       + (position[a, 1] - position[b, 1]) * n[c, 1]
+                       + (position[a, 2] - position[b, 2]) * n[c, 2]) >= 0.0
+        given[c] = slop if resting else 0.0
+        out[c] = depth0[c] - given[c]
+        count += resting
+    return count
 
 
 @njit(cache=True, nogil=True)
