@@ -1,7 +1,7 @@
 """pointmass against the in-run limit: for each scene, one fused numba kernel doing exactly the
 scene's work (no World, no generators, no checks), timed in the same run.
 
-    .venv/bin/python benchmarks/bench_limits.py [--quick]
+    .venv/bin/python benchmarks/bench_limits.py [--quick] [--only-pit | --only-tiny]
 
 Prints body-steps/s (particles × steps / s) for pointmass's World and for the fused loop, and
 their ratio (1.0 = the core costs nothing over the bare loop). Median of several repeats; numba
@@ -9,7 +9,10 @@ compilation excluded. Scenes: 100 000 free particles under gravity and drag; a 1
 (19 800 springs with damping, drag, two pinned corners); the ball pit of bench_peers.py
 (10 000 spheres, 600 steps from the same start, against fused_pit.py's one-thread sequential
 impulses with 10 velocity and 4 position passes; the mean speed and the overlaps after the run
-show what each buys).
+show what each buys). Then the tiny worlds' steps/s, a step's fixed cost (issue 26, point 10:
+one sphere resting on the ground ≥ 30 000 steps/s): one particle, a particle on the ground, a
+sphere body on the ground with each body stage, sleep on and off, and bench_rigid's 10-box
+tower with the soft step and sleep off (``--only-tiny``: these rows alone).
 """
 
 from __future__ import annotations
@@ -170,12 +173,23 @@ def tiny_worlds() -> dict:
             return world
         return build
 
+    def tower(sleep, body_step="soft"):
+        def build():  # bench_rigid's tower: 10 unit cubes (1 kg, μ 0.5) on the ground
+            world = pm.World(sleep=sleep, body_step=body_step)
+            world.add(pm.Ground(friction=0.5))
+            for i in range(10):
+                world.add_body(pm.Box((0.5, 0.5, 0.5)), (0, 0.5 + i, 0), mass=1.0,
+                               friction=0.5)
+            return world
+        return build
+
     return {"1-particle world": particle,
             "1 particle (r 0.1) on the ground": resting_particle,
             "1 sphere body on the ground, impulses step": resting_sphere(True),
             "1 sphere body on the ground, impulses step, sleep off": resting_sphere(False),
             "1 sphere body on the ground, soft step": resting_sphere(True, "soft"),
-            "1 sphere body on the ground, soft step, sleep off": resting_sphere(False, "soft")}
+            "1 sphere body on the ground, soft step, sleep off": resting_sphere(False, "soft"),
+            "10-box tower, soft step, sleep off": tower(False)}
 
 
 def bench_tiny(steps: int, repeats: int, build=None) -> float:
@@ -213,21 +227,32 @@ def main() -> None:
     parser.add_argument("--pit", type=int, default=None, help="the pit's N (default 10 000; "
                         "--quick: 1000)")
     parser.add_argument("--only-pit", action="store_true", help="the pit row alone")
+    parser.add_argument("--only-tiny", action="store_true", help="the tiny worlds' rows alone "
+                        "(a step's fixed cost, issue 26 point 10)")
     args = parser.parse_args()
     if args.only_pit:
         print(f"{'scene':34s} {'pointmass':>12s} {'fused loop':>12s} {'ratio':>7s}")
         pit_row(args)
         return
     steps, repeats = (20, 3) if args.quick else (100, 5)
+    if args.only_tiny:
+        tiny_rows(args, repeats)
+        return
     print(f"{'scene':34s} {'pointmass':>12s} {'fused loop':>12s} {'ratio':>7s}")
     for name, (ours, limit) in (
             ("free particles, N = 100 000", bench_free(100_000, steps, repeats)),
             ("cloth 100 × 100 (19 800 springs)", bench_cloth(100, steps, repeats))):
         print(f"{name:34s} {ours:12.3g} {limit:12.3g} {ours / limit:7.2f}")
     pit_row(args)
+    tiny_rows(args, repeats)
+
+
+def tiny_rows(args, repeats: int) -> None:
+    """The tiny worlds' steps/s (``tiny_worlds``)."""
     for name, build in tiny_worlds().items():
-        tiny = bench_tiny(20_000 if not args.quick else 5_000, repeats, build)
-        print(f"{name + ', steps/s':60s} {tiny:12.3g}")
+        steps = 20_000 if not args.quick else 5_000
+        tiny = bench_tiny(steps // 10 if "tower" in name else steps, repeats, build)
+        print(f"{name + ', steps/s':64s} {tiny:12.3g}")
 
 
 if __name__ == "__main__":

@@ -51,3 +51,36 @@ def test_importing_pointmass_makes_openmp_wait_passively_unless_told_otherwise()
     out = subprocess.run([sys.executable, "-c", code], env={**env, "OMP_WAIT_POLICY": "ACTIVE"},
                          capture_output=True, text=True, check=True)
     assert out.stdout.strip() == "ACTIVE"
+
+
+def _imports(path) -> set[str]:
+    """The absolute module names ``path`` (a module of the ``pointmass`` package) imports."""
+    import ast
+
+    package = "pointmass." + ".".join(path.relative_to(PACKAGE).with_suffix("").parts[:-1])
+    names = set()
+    for node in ast.walk(ast.parse(path.read_text())):
+        if isinstance(node, ast.Import):
+            names.update(a.name for a in node.names)
+        elif isinstance(node, ast.ImportFrom):
+            base = package.rstrip(".").split(".")
+            base = base[:len(base) - node.level + 1] if node.level else []
+            module = ".".join(base + ([node.module] if node.module else []))
+            names.add(module)
+            names.update(f"{module}.{a.name}" for a in node.names)
+    return names
+
+
+PACKAGE = __import__("pathlib").Path(__file__).resolve().parents[1] / "src" / "pointmass"
+
+
+@pytest.mark.parametrize(("lower", "upper"), [("rigid", "solver"), ("solver", "render"),
+                                              ("rigid", "render"), ("render", "app")])
+def test_one_direction_between_packages(lower, upper):
+    """``pointmass.solver`` builds on ``pointmass.rigid`` (bodies, shapes, joints' rows), never
+    the reverse (issue 26); the physics never imports the renderer; the renderer never the app
+    (the window)."""
+    offenders = sorted(str(p.relative_to(PACKAGE)) for p in (PACKAGE / lower).rglob("*.py")
+                       if any(n == f"pointmass.{upper}" or n.startswith(f"pointmass.{upper}.")
+                              for n in _imports(p)))
+    assert offenders == []

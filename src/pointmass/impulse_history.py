@@ -51,19 +51,6 @@ def _find_rows(old_keys, order, rank, keys, out):
 
 
 @njit(cache=True, nogil=True)
-def _gather(rows, kept, out):
-    """out[c] = kept[rows[c]] where rows[c] >= 0 (rows of ``out`` left as they are elsewhere);
-    ``kept`` and ``out`` are (M, K): an (M,) column is passed as (M, 1), so one compiled copy
-    serves both (and the element loop needs no array-slice assignment, whose error message
-    numba compiles string formatting for)."""
-    for c in range(rows.shape[0]):
-        r = rows[c]
-        if r >= 0:
-            for k in range(out.shape[1]):
-                out[c, k] = kept[r, k]
-
-
-@njit(cache=True, nogil=True)
 def _sort_by_recalled_rows(keys, rows, old_keys, order):
     """Fill ``order`` with the permutation that sorts ``keys`` (all >= 0, unique), built from
     where ``recall`` found them among the sorted ``old_keys`` (``rows``, -1: new): the contacts
@@ -162,6 +149,42 @@ def _sort_runs(keys, order):
     return True
 
 
+@njit(cache=True, nogil=True)
+def _recall_into(old_keys, order, rank, old_normal, old_tangent, keys, normal, tangent):
+    """``recall``'s work in one compiled call: zero ``normal`` and ``tangent``, find each key's
+    old row (``_find_rows``) and copy what it kept (``old_tangent`` with no rows: none kept).
+    Returns the rows found (-1: new)."""
+    rows = np.empty(keys.shape[0], np.int64)
+    _find_rows(old_keys, order, rank, keys, rows)
+    tangents = old_tangent.shape[0] > 0
+    for c in range(keys.shape[0]):
+        normal[c] = 0.0
+        for k in range(tangent.shape[1]):
+            tangent[c, k] = 0.0
+        r = rows[c]
+        if r >= 0:
+            normal[c] = old_normal[r]
+            if tangents:
+                for k in range(tangent.shape[1]):
+                    tangent[c, k] = old_tangent[r, k]
+    return rows
+
+
+@njit(cache=True, nogil=True)
+def _keep_sorted(keys, normal, tangent):
+    """``keep``'s usual case in one compiled call: every key ≥ 0 and the keys already sorted.
+    ``tangent`` has no rows where none is kept. Returns (whether they were, then copies of
+    keys, normal, tangent and the order and rank, both the identity); with False the caller
+    takes the general path."""
+    m = keys.shape[0]
+    for c in range(m):
+        if keys[c] < 0 or (c > 0 and keys[c] <= keys[c - 1]):
+            return False, keys[:0], normal[:0], tangent[:0], keys[:0], keys[:0]
+    return True, keys.copy(), normal.copy(), tangent.copy(), np.arange(m), np.arange(m)
+
+
+_NO_TANGENT = np.zeros((0, 3))
+
 #: The empty history's arrays, shared (with no element, nothing can be written into them): a
 #: world whose solver clears the history every step (nothing touching) allocates nothing for it.
 _EMPTY_KEYS = np.zeros(0, np.int64)
@@ -232,21 +255,26 @@ class ImpulseHistory:
     def recall(self, keys: np.ndarray, normal: np.ndarray, tangent: np.ndarray) -> None:
         """Fill ``normal`` (M,) and ``tangent`` (M, 3) with the impulses kept for ``keys`` (0
         for a contact that is new or has no key)."""
-        normal[:] = 0.0
-        tangent[:] = 0.0
         self._recalled = None
         if self._keys.shape[0] == 0:
+            normal[:] = 0.0
+            tangent[:] = 0.0
             return
-        rows = np.empty(keys.shape[0], np.int64)
-        _find_rows(self._keys, self._order, self._rank, keys, rows)
-        self._recalled = rows
-        _gather(rows, self._normal[:, None], normal[:, None])  # views: (M, 1)
-        if self._tangent is not None:
-            _gather(rows, self._tangent, tangent)
+        self._recalled = _recall_into(self._keys, self._order, self._rank, self._normal,
+                                      _NO_TANGENT if self._tangent is None else self._tangent,
+                                      keys, normal, tangent)
 
     def keep(self, keys: np.ndarray, normal: np.ndarray, tangent: np.ndarray | None) -> None:
         """Keep this step's impulses of the keyed contacts, sorted by key (``tangent`` None:
         no friction anywhere, nothing to keep)."""
+        done, k, n, t, order, rank = _keep_sorted(
+            keys, normal, _NO_TANGENT if tangent is None else tangent)
+        if done:
+            self._recalled = None
+            self._keys, self._normal = k, n
+            self._tangent = None if tangent is None else t
+            self._order, self._rank = order, rank
+            return
         if keys.shape[0] and keys.min() < 0:
             keyed = keys >= 0
             keys, normal = keys[keyed], normal[keyed]

@@ -24,12 +24,14 @@ from .rigid.forces import BodyForceGenerator
 from .rigid.joint_set import Joints
 from .rigid.joints import Joint
 from .rigid.shapes import Box, Sphere
-from .rigid.step import integrate_positions, integrate_velocities, spin_error
+from .rigid.step import force_acceleration, integrate_positions, integrate_velocities, spin_error
 from .solver import ImpulseHistory, Solver, SolverSettings, SolveStats, body_soft
 from .solver.body_continuous import sweep_back
 from .solver.body_late import project_late
 from .stability import SpringCheck, jump_check, needs_jump_check
 from .step_stats import StepStats
+
+_NO_SOLVE = SolveStats()  # the particle stages' stats with no particles (frozen)
 
 
 class World:
@@ -57,8 +59,8 @@ class World:
             v3's soft step, ``solver/body_soft.py``: after one collision pass, 4 substeps of
             soft contacts and relax, then restitution; it keeps linear and angular momentum
             exactly, stands towers of 30 boxes and holds joints per substep
-            (``solver/joint_soft.py``), but is not the default yet: force-free random scenes
-            with joints gain energy with it (issue 30); see that module).
+            (``solver/joint_soft.py``), but is not the default yet: a loop of joints (a rope
+            bridge) is solved by soft rows and opens; see that module).
 
         settings: The solver's tuning numbers (``pm.SolverSettings``; its defaults when None):
             tolerances, caps on passes, when the exact solve and the threads are used.
@@ -205,10 +207,10 @@ class World:
 
     def _wake_all(self) -> None:
         b = self.bodies
-        if not b.awake.all():
+        if b.count and not b.awake.all():
             b.wake_islands(np.unique(b.island[~b.awake]))
         p = self.particles
-        if not p.awake.all():
+        if p.count and not p.awake.all():
             p.wake_all()
 
     @property
@@ -459,27 +461,13 @@ class World:
             p.force[:] = 0.0  # a refused step leaves no half-accumulated forces behind
             raise
 
-        # Integrate: v += a·dt, then p += v·dt (semi-implicit Euler, the cookbook's order).
-        # The acceleration is stored only where it is read: the resting-contact test of the
-        # particle solver and of the body stage.
-        after = bool(self.contact_generators) or self.bodies.count > 0
-        sleepers = self._sleep and p.count > 0 and wake.wake_disturbed(self, dt)
-        integrate_particles(p, g, k1, k2, dt, after, self.time)
-
-        # Find contacts: every contact generator appends to the buffer. With particles
-        # asleep: none when nothing can disturb them, else the rows wake what they touch and
-        # those left reaching a sleeper are left out (``particle_sleep.py``).
         self.contacts.clear()
         self.contacts.dt = dt
-        live = moving_particles(p) if sleepers else None
-        if live is None or live.any():
-            for generator in self.contact_generators:
-                generator.generate(p, self.contacts)
-        if live is not None:  # particles asleep (``sleepers``)
-            wake.wake_touched(self, live, g, dt)
-
-        # Resolve them: impacts, resting contacts and links, then interpenetration.
-        solved = self.solver.solve(p, self.contacts, self.impulses, dt)
+        if p.count:
+            solved = self._substep_particles(g, k1, k2, dt)
+        else:  # what the particle stages do with no particles: no rows, nothing kept
+            self.impulses.clear()
+            solved = _NO_SOLVE
         if self.bodies.count:
             rows = self._substep_bodies(dt)
             solved = SolveStats(
@@ -488,6 +476,30 @@ class World:
                 position_passes=solved.position_passes + rows.position_passes,
                 resolutions=solved.resolutions, cold_restart=solved.cold_restart)
         return solved
+
+    def _substep_particles(self, g: np.ndarray, k1: float, k2: float,
+                           dt: float) -> SolveStats:
+        """The particles' stages of a substep: integration, their contacts, their solve."""
+        p = self.particles
+        # Integrate: v += a·dt, then p += v·dt (semi-implicit Euler, the cookbook's order).
+        # The acceleration is stored only where it is read: the resting-contact test of the
+        # particle solver and of the body stage.
+        after = bool(self.contact_generators) or self.bodies.count > 0
+        sleepers = self._sleep and wake.wake_disturbed(self, dt)
+        integrate_particles(p, g, k1, k2, dt, after, self.time)
+
+        # Find contacts: every contact generator appends to the buffer. With particles
+        # asleep: none when nothing can disturb them, else the rows wake what they touch and
+        # those left reaching a sleeper are left out (``particle_sleep.py``).
+        live = moving_particles(p) if sleepers else None
+        if live is None or live.any():
+            for generator in self.contact_generators:
+                generator.generate(p, self.contacts)
+        if live is not None:  # particles asleep (``sleepers``)
+            wake.wake_touched(self, live, g, dt)
+
+        # Resolve them: impacts, resting contacts and links, then interpenetration.
+        return self.solver.solve(p, self.contacts, self.impulses, dt)
 
     def _substep_bodies(self, dt: float):
         """The body stage of one substep: ``body_step`` picks the method."""
@@ -624,8 +636,7 @@ class World:
                 raise
         if self._sleep:
             sleeping.wake_pushed(b)
-        w = b.inv_mass[:, None]
-        return kept, np.where(w > 0.0, self._gravity + b.force * w, 0.0)
+        return kept, force_acceleration(b.inv_mass, b.force, self._gravity)
 
     def _kick(self, dt: float, which: np.ndarray) -> None:
         """The velocity half of the bodies' integration over ``dt``, for the bodies of mask

@@ -14,5 +14,6 @@ callables) for ``World.add``. islands: union–find over touching bodies and the
 sleep: what wakes an island and the warm start a sleeping island keeps (``World(sleep=True)``).
 joints: ``BallJoint`` (cone and twist limits) and ``HingeJoint`` (angle limits) for
 ``World.add``; joint_set: the world's ``Joints`` and their warm start (the kernels:
-``pointmass.solver.joint_stages`` / ``joint_project`` / ``joint_solver``).
+``pointmass.solver.joint_stages`` / ``joint_project`` / ``joint_solver``); joint_rows: a joint's
+angular rows in the current pose (the solver builds on them; rigid never imports solver).
 """

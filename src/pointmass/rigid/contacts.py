@@ -58,6 +58,14 @@ class BodyContacts:
         self.key = np.empty(capacity, np.int64)
         self.impulse = np.zeros(capacity)  # calloc: no pass over the room
 
+    def take(self, a, b, normal, r_a, r_b, depth, friction, restitution, key) -> None:
+        """Hold these rows (arrays a kernel made, of one length) and no others; the impulses
+        are 0 until the solve."""
+        self.count = a.shape[0]
+        self.a, self.b, self.normal, self.r_a, self.r_b = a, b, normal, r_a, r_b
+        self.depth, self.friction, self.restitution, self.key = depth, friction, restitution, key
+        self.impulse = np.zeros(self.count)
+
     def trim(self, count: int) -> None:
         """Keep the first ``count`` rows as views (after a kernel wrote them)."""
         self.count = count

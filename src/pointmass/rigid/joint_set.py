@@ -7,8 +7,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..solver.joint_stages import angular_errors
 from .bodies import Bodies
+from .joint_rows import angular_errors
 from .joints import Joint
 
 

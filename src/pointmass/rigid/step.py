@@ -13,6 +13,7 @@ from __future__ import annotations
 
 import math
 
+import numpy as np
 from numba import njit
 
 from .. import _validate as check
@@ -31,6 +32,19 @@ MAX_ROTATION = 0.25 * math.pi
 #: not a spin to slow down: the kick returns the body and the world raises FloatingPointError
 #: (|ω| = 1e300 used to be scaled by cap/inf to exactly 0, silently). A finite spin past the
 #: cap is slowed to it, however large (Cyclone's R2: a huge torque turns a body a quarter turn).
+
+
+@njit(cache=True, nogil=True)
+def force_acceleration(inv_mass, force, g):
+    """(N, 3) what gravity ``g`` and the forces alone give each body [m/s²], 0 for a static
+    one: numpy's ``np.where(w > 0, g + F·w, 0)`` in one call, the same arithmetic (the
+    resting-contact trick reads it)."""
+    out = np.empty(force.shape)
+    for i in range(force.shape[0]):
+        w = inv_mass[i]
+        for k in range(3):
+            out[i, k] = g[k] + force[i, k] * w if w > 0.0 else 0.0
+    return out
 
 
 @njit(cache=True, nogil=True)

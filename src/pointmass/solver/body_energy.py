@@ -45,9 +45,9 @@ import numpy as np
 from numba import njit
 
 from ..rigid.bodies import _kinetic_energy
+from ..rigid.joint_rows import EQUAL
 from ..rigid.scalar import qrot, qrot_inv
 from . import body_stages as st
-from . import joint_stages as js
 from . import joint_tree as jt
 
 #: A solve may gain at most this fraction of the kinetic energy (round-off) before it is
@@ -78,7 +78,7 @@ def redo(solver, b, c, rows, joints, v0, w0, energy0: float, max_passes: int) ->
         r = rows.joints
         r.bias[:] = 0.0
         r.predict = False
-        r.target[r.row == js.EQUAL] = 0.0  # an equality row's λ has either sign
+        r.target[r.row == EQUAL] = 0.0  # an equality row's λ has either sign
         np.minimum(r.target, 0.0, out=r.target)  # a limit's never pulls: −C/dt may stay
         r.mode[r.mode >= jt.DIRECT] = jt.ITERATIVE
         r.tree = ()

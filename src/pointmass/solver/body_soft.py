@@ -58,13 +58,13 @@ stage's exact figures name their stage and are re-derived for this one (tests/ph
 Not yet the default: collision runs once a step, so fast bodies could end steps deep in
 what no row followed: the world's continuous stage after this step (``body_continuous``)
 moves them back to their time of impact with static bodies and planes (no box passes the thin
-wall now), but pairs of moving bodies can still end a step deep (5 of 91 random scenes); and
-force-free random jointed scenes still gain energy in steps (none explodes now:
-``joint_soft``'s docstring has the counts). Force-free random scenes without joints gain no
-kinetic energy in a step (issue 30's 1e-9; ``soft_energy``: the restitution's budget, the
-friction warm start clamped to the solve's cone before the drift, bodies on scenery alone
-capped at their energy after the kick). Tried and taken out: warm starting across steps only
-the points that touch, without friction (the 30-box tower then walked 32 cm in 60 s).
+wall now), but pairs of moving bodies can still end a step deep (5 of 91 random scenes).
+Force-free random scenes gain no kinetic energy in a step, with joints or without (issue 30's
+1e-9; ``soft_energy``: the restitution's budget, the friction warm start clamped to the
+solve's cone before the drift, bodies on scenery alone and islands that a joint holds capped
+at their energy after the kick; ``joint_soft``'s docstring has the jointed counts). Tried
+and taken out: warm starting across steps only the points that touch, without friction (the
+30-box tower then walked 32 cm in 60 s).
 """
 
 from __future__ import annotations
@@ -132,6 +132,24 @@ def softness(hertz: float, zeta: float, h: float) -> tuple[float, float, float]:
     a2 = h * omega * a1
     a3 = 1.0 / (1.0 + a2)
     return omega / a1, a2 * a3, a3
+
+
+_SOFTNESS: list = [None]  # the last (inputs, soft, static) of ``_softness_rows``
+
+
+def _softness_rows(h: float) -> tuple[np.ndarray, np.ndarray]:
+    """(soft, static): the contact rows' softness (``softness``, then ``CONTACT_SPEED``)
+    against bodies and against scenery for a substep h, made again only when h or a
+    constant changes (a tiny world's step paid for building them every step)."""
+    key = (h, CONTACT_HERTZ, HERTZ_CAP, DAMPING_RATIO, CONTACT_SPEED)
+    last = _SOFTNESS[0]
+    if last is not None and last[0] == key:
+        return last[1], last[2]
+    hertz = min(CONTACT_HERTZ, HERTZ_CAP * (1.0 / h))
+    soft = np.array((*softness(hertz, DAMPING_RATIO, h), CONTACT_SPEED))
+    static = np.array((*softness(2.0 * hertz, DAMPING_RATIO, h), CONTACT_SPEED))
+    _SOFTNESS[0] = (key, soft, static)
+    return soft, static
 
 
 @dataclass
@@ -542,7 +560,7 @@ def _pass(b, c: BodyContacts, r: _Rows, inv_h: float, use_bias: bool, soft, stat
 @njit(cache=True, nogil=True)
 def contact_step(nb, substeps, h, gravity, soft, static, threshold, pos, quat, vel, ang,
                  inv_mass, inv_inertia, inv_i, awake, lin_d, ang_d, acc, ca, cb, n, r0a, r0b,
-                 depth0, mu, e, impulse, kept, round_a, round_b, total, force, torque):
+                 depth0, mu, e, impulse, kept, shape, total, force, torque):
     """The whole soft step of a world without joints in one compiled call (issue 26: a small
     world pays no Python per substep; measured, the 10-box tower's stage made 38 kernel calls
     a step from Python). ``impulse`` (M,) and ``kept`` (M, 3) come in with the recalled warm
@@ -551,9 +569,16 @@ def contact_step(nb, substeps, h, gravity, soft, static, threshold, pos, quat, v
     the same order, as ``step``'s loop with joints: the results are bit for bit those of that
     loop.
 
+    ``shape`` (``nb``,) the bodies' shapes: which points' anchors do not turn (``_round``).
+
     Returns (passes, deepest overlap, error, body): error 1 is a spin that is not finite after
     a kick, 2 a body that is not finite after a drift (``body`` names it), 0 none."""
     m = ca.shape[0]
+    round_a = np.empty(m, np.bool_)
+    round_b = np.empty(m, np.bool_)
+    for c in range(m):  # ``_round``: particle rows (index >= nb) do not spin anyway
+        round_a[c] = ca[c] < nb and shape[ca[c]] == SPHERE
+        round_b[c] = cb[c] >= 0 and cb[c] < nb and shape[cb[c]] == SPHERE
     start = np.empty(m + 1, np.int64)
     k = bm.find_manifolds(ca, cb, n, start) if m else 0
     start = start[:k + 1]
@@ -682,12 +707,11 @@ def _contact_step(v, b, c: BodyContacts, acceleration, history: ImpulseHistory, 
         history.recall(c.key, impulse, kept)
     else:
         history.clear()
-    round_a, round_b = _round(v, b, c)
     passes, deepest, error, bad = contact_step(
         b.count, substeps, h, gravity, soft, static, threshold, v.position, v.orientation,
         v.velocity, v.angular_velocity, v.inv_mass, v.inv_inertia, v.inv_inertia_world,
         v.awake, b.linear_damping, b.angular_damping, acceleration, c.a, c.b, c.normal, c.r_a,
-        c.r_b, c.depth, c.friction, c.restitution, impulse, kept, round_a, round_b, c.impulse,
+        c.r_b, c.depth, c.friction, c.restitution, impulse, kept, b.shape, c.impulse,
         b.force, b.torque)
     if error == 1:
         from ..rigid.step import spin_error
@@ -720,9 +744,7 @@ def step(view, bodies, contacts: BodyContacts, acceleration: np.ndarray,
     nb = b.count
     h = dt / substeps
     inv_h = 1.0 / h
-    hertz = min(CONTACT_HERTZ, HERTZ_CAP * inv_h)
-    soft = np.array((*softness(hertz, DAMPING_RATIO, h), CONTACT_SPEED))
-    static = np.array((*softness(2.0 * hertz, DAMPING_RATIO, h), CONTACT_SPEED))
+    soft, static = _softness_rows(h)
     out = SoftRows(c)
     jointed = joints is not None and len(joints) > 0
     if not jointed and compiled:  # the whole step in one compiled call
@@ -750,16 +772,25 @@ def step(view, bodies, contacts: BodyContacts, acceleration: np.ndarray,
     jr = joint_soft.prepare(v, joints, h) if jointed else None
     start_pos = v.position[:nb].copy()  # where the forces were found (``kick``)
     turn = np.empty((nb, 3))
-    # restitution returns at most what the contacts absorbed (``soft_energy``): counted where
-    # a point can bounce; with joints, their impulses are in the same velocities (their slice)
-    bouncy = c.count and not jointed and bool((c.restitution > 0.0).any())
+    # restitution returns at most what the substeps' contacts (and joints) absorbed
+    # (``soft_energy``), counted where a point can bounce
+    bouncy = c.count and bool((c.restitution > 0.0).any())
     budget = soft_energy.Budget() if bouncy else None
-    # a body on scenery alone leaves no substep with more energy than it began with (joints
-    # share their bodies' energy: not with them, as the budget)
+    # a body on scenery alone leaves no substep with more energy than it began with
     alone = None
-    if c.count and not jointed:
+    if c.count:
         alone = soft_energy.scenery_only(v.velocity.shape[0], c.a, c.b)
         start_energy = np.zeros(v.velocity.shape[0])
+    if jointed:  # ... nor does an island of bodies that a joint holds (``soft_energy``)
+        label = np.empty(v.velocity.shape[0], np.int64)
+        grounded = np.empty(v.velocity.shape[0], np.bool_)
+        ja = joints.arrays()
+        islands = soft_energy.joint_islands(v.velocity.shape[0], ja.a, ja.b, c.a, c.b,
+                                            v.inv_mass, label, grounded)
+        grounded = grounded[:islands]
+        island_energy = np.zeros(islands)
+        if alone is not None:
+            alone &= label < 0
 
     for i in range(substeps):
         if i > 0:
@@ -771,6 +802,9 @@ def step(view, bodies, contacts: BodyContacts, acceleration: np.ndarray,
                 raise spin_error(b, int(bad), h)
         if budget is not None:
             budget.begin(v)
+        if jointed:
+            soft_energy.island_energies(label, v.velocity, v.angular_velocity, v.orientation,
+                                        v.inv_mass, v.inv_inertia, island_energy)
         if jointed:  # (``joint_soft``: Box2D's joint stages, the tree solved exactly)
             joint_soft.warm_start(v, joints, jr)
         if alone is not None:
@@ -806,6 +840,9 @@ def step(view, bodies, contacts: BodyContacts, acceleration: np.ndarray,
         if jointed:
             passes += joint_soft.solve(v, joints, jr, True, (lambda: _pass(
                 v, c, r, inv_h, False, soft, static)) if c.count else None)
+            soft_energy.limit_islands(label, grounded, island_energy, v.position, v.velocity,
+                                      v.angular_velocity, v.orientation, v.inv_mass,
+                                      v.inv_inertia)
         if budget is not None and c.count:
             budget.relaxed(v)
         if c.count:  # the substep's warm start and passes gave r.impulse in all

@@ -19,8 +19,9 @@ import math
 import numpy as np
 from numba import njit
 
+from ..rigid.joint_rows import EQUAL, OFF, angular_rows
 from ..rigid.scalar import solve3, turn
-from .joint_stages import EQUAL, OFF, OFF_JOINT, _axis_mass, _point_matrix, angular_rows, separation
+from .joint_stages import OFF_JOINT, _axis_mass, _point_matrix, separation
 
 #: Separation [m] and angle [rad] left to the velocity rows' bias (Box2D's linear slop 5 mm;
 #: its angular slop is 2°, half that here so limits hold within a degree or two).

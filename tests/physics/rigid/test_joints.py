@@ -112,9 +112,11 @@ def test_a_free_jointed_pair_keeps_its_momentum_and_angular_momentum(stage):
     * "soft" (``joint_soft``): its joint impulses are equal and opposite at one point and the
       drift is torque-free, so angular momentum is kept by construction, to rounding (1e-9;
       measured 6.5e-11), and the joint aimed at the end pose every substep stays shut (1e-6 m;
-      measured 1.4e-10 m). It has no energy guard: the energy stays in a band with no drift,
-      within 1e-7 relative (measured +3.3e-8 / −4.5e-8; ratchet, issue 30's target is no step
-      gaining more than 1e-9, not met here: 160 of 600 steps gain more)."""
+      measured 1.4e-10 m). No step gains energy (issue 30: 1e-9; ``soft_energy.
+      limit_islands`` takes what a substep's joint stages leave beyond its start off the
+      pair's motion relative to its rigid motion, which keeps both momenta): the energy only
+      falls, by the lower half of the band the joints' aim swung it in (+3.3e-8 / −4.5e-8,
+      307 of 600 steps gaining, before), −3.7e-7 in 10 s (measured), bound 1e-6."""
     world = pm.World(gravity=(0.0, 0.0, 0.0), body_step=stage)
     omega = np.array([0.3, 0.5, 2.0])
     centre = np.array([0.5 / 3, 0.0, 0.0])  # the pair's centre of mass
@@ -128,12 +130,14 @@ def test_a_free_jointed_pair_keeps_its_momentum_and_angular_momentum(stage):
     joint = world.add(BallJoint(a, (0.25, 0.0, 0.0), b))
     p0, l0 = _momenta(world)
     e0 = world.kinetic_energy()
-    gain = 1e-9 if stage == "impulses" else 1e-7
+    before = e0
     for _ in range(600):
         world.step(DT)
-        assert world.kinetic_energy() <= e0 * (1 + gain)
+        now = world.kinetic_energy()
+        assert now <= before * (1 + 1e-9)
         if stage == "soft":
-            assert world.kinetic_energy() >= e0 * (1 - gain)
+            assert now >= e0 * (1 - 1e-6)
+        before = now
     p1, l1 = _momenta(world)
     assert np.abs(p1 - p0).max() < 1e-12
     spin = 0.01 if stage == "impulses" else 1e-9
