@@ -61,15 +61,17 @@ def _end_pose(pos, quat, vel, ang, inv_inertia, dt, i, xend, qend):
 
 @njit(cache=True, nogil=True)
 def end_targets(ja, jb, la, lb, pos, quat, vel, ang, inv_inertia, dt, mode, ra, rb, keep, bias,
-                xend, qend, speed):
+                xend, qend, speed, top):
     """For every joint the exact solve takes (``mode`` DIRECT or LOOP): ``bias`` (J, 3) ←
     Ċ_now − (C_end − K)/dt of its point block (C_end: the gap in the predicted end pose; K:
     what the step may leave of the gap the joint has now, ``keep`` (J, 3); ``xend`` (N, 3),
     ``qend`` (N, 4) are scratch), no faster than ``speed`` [m/s] (the soft step's push-out
-    cap; ``inf``: none). Returns the largest predicted excess over dt [m/s]."""
+    cap; ``inf``: none); only joints whose mode is at most ``top`` (LOOP: all of them;
+    DIRECT: the soft step's loops keep their bias, ``joint_soft``). Returns the largest
+    predicted excess over dt [m/s]."""
     largest = 0.0
     for j in range(ja.shape[0]):
-        if mode[j] < DIRECT_JOINT:  # Gauss–Seidel's keep prepare's Baumgarte targets
+        if mode[j] < DIRECT_JOINT or mode[j] > top:  # Gauss–Seidel's keep their targets
             continue
         a = ja[j]
         b = jb[j]

@@ -25,13 +25,22 @@ velocities. What each pass solves is ``joint_solver.velocity_pass``:
   exact pendulum in its angle (±0.57 % of m·g·L at h = 1/240): the joints add nothing to it.
   Where a pass leaves more to do than the one before (a lever arm that turns through a large
   angle in a substep, joints that contradict one another) the substep falls back to the bias;
+- the point blocks of the joints that close a loop of the tree (a rope bridge's second
+  anchor, a ring's last joint), through the tree (``joint_loops``) as soft rows: Box2D's row
+  with the mass the whole tree shows the joint instead of its own two bodies' (the spring
+  ``softness`` gives then holds a load F with a gap S·F/ω², S the joint's mobility through
+  the tree; with its own bodies' mass, K·F/ω²: the 50-plank rope bridge's second anchor,
+  holding the weight of the bridge with the spring of one plank, opened 2.749 mm; now
+  0.085 mm), aimed by the bias (not at the end pose), rigid in the relax;
 - the angular rows (a hinge's locks, the limits), and the point blocks of the joints that
-  close a loop of the tree or that it cannot take, by Gauss–Seidel, soft in the solve (the
-  spring's mass and impulse scales: Box2D's rows). A loop is not solved through the tree here
-  (``joint_loops``, as the default stage does): its effective mass through the tree is near
-  singular where the joints contradict one another (two joints of one body to two fixed
-  points), and an exact solve of a contradiction launched the body (a random scene at 9e19
-  m/s in one step); a soft row only pulls.
+  the tree cannot take, by Gauss–Seidel, soft in the solve (the spring's mass and impulse
+  scales: Box2D's rows). Among these are the loops that join a pair of bodies a tree joint
+  already joins (``joint_tree.unpair``: a ball and a hinge on one pair, two hinges): two
+  point blocks on one pair are redundant by structure, their mass through the tree singular
+  along the line between them and near singular wherever either is open, and solved through
+  the tree they threw random jointed scenes (benchmarks/rigid_fuzz.py) to 1e11 … 1e30 m/s
+  (rigid) or 6.7e3 m/s where Gauss–Seidel keeps 46 m/s (soft rows through the tree, seed
+  123); a soft row on its own bodies only pulls.
 
 A bias closes a gap at the contacts' push-out speed (``body_soft.CONTACT_SPEED``, Box2D's
 ``contactSpeed``) at most: a joint made 0.5 m open is pulled shut, not thrown shut.
@@ -72,8 +81,7 @@ a substep (the aim at the end pose relaxed at another pose's arms and inertia):
 ``soft_energy.limit_islands`` takes it back off each island a joint holds (of the 61 force-
 free jointed scenes, 47 gained in a step, 15 by > 1e-3; none now). Measured now, seeds 0–199,
 143 jointed scenes, 300 steps: 0 explosions, fastest 2.2e3 m/s (seed 53), 9 end a step with
-an overlap > 2 cm. The 50-plank rope bridge's second anchor is a soft row: its gap stays
-2.7 mm.
+an overlap > 2 cm.
 
 Why the relax pass needs the pose after the drift. A pendulum turning at ω: the drift carries
 the bob along the tangent of the pose the substep started in, so the joint opens by the
@@ -108,7 +116,7 @@ MAX_PASSES = 30
 TOLERANCE = 1e-5
 #: Whether the tree solve stiffens the inertia by the joints' tension (``joint_solver``):
 #: off, as the module docstring says why (with it, random jointed seed 196 reached 1e158 rad/s
-#: in its first step; without it the 50-plank bridge keeps its 2.749 mm gap, the pendulum
+#: in its first step; without it the 50-plank bridge kept its 2.749 mm gap, the pendulum
 #: tests their figures, and a 20-box chain released level whips to 12.4 mm, 13.6 mm with it).
 GEOMETRIC = False
 
@@ -136,10 +144,11 @@ def prepare(view, joints, h: float) -> SoftJointRows:
     """The joints' rows in the bodies' pose now (arms, masses, axes, limits, the tree's
     factors), targets for the solve (Ċ = −b·C) and for the relax pass (0)."""
     rate, mass_scale, impulse_scale = softness(h)
-    rows = joint_solver.prepare(view, joints, h, beta=rate * h, loops=False,
-                                geometric=GEOMETRIC)
+    rows = joint_solver.prepare(view, joints, h, beta=rate * h, loops=True,
+                                geometric=GEOMETRIC, pairs=False)
     rows.mass_scale = mass_scale
     rows.impulse_scale = impulse_scale
+    rows.soft_loops = True  # loops: soft rows through the tree, with the tree's mass
     # a gap is closed at the contacts' push-out speed at most (Box2D's ``contactSpeed``)
     from .body_soft import CONTACT_SPEED
 

@@ -69,14 +69,20 @@ class JointRows:
     #: Fastest relative velocity [m/s] a point block's aimed target may ask for (the soft
     #: step's push-out cap, ``joint_soft``); inf: no cap (the default stage).
     speed: float = math.inf
+    #: Whether the LOOP joints' point blocks are soft rows through the tree (``joint_soft``:
+    #: ``mass_scale`` and ``impulse_scale`` with the tree's mass, targets the position bias)
+    #: rather than rigid rows aimed at the end pose (the default stage).
+    soft_loops: bool = False
 
 
 def prepare(bodies, joints, dt: float, beta: float = BETA, loops: bool = True,
-            geometric: bool | None = None) -> JointRows:
+            geometric: bool | None = None, pairs: bool = True) -> JointRows:
     """The rows of ``joints`` (a ``rigid.joint_set.Joints``) in the bodies' current pose, their
     targets Ċ = −β·C/dt (``beta``: the fraction of a position error taken back in dt);
-    ``loops`` False leaves the joints that close a loop of a tree to Gauss–Seidel;
-    ``geometric``: whether the tree solve stiffens the inertia (``GEOMETRIC`` if None)."""
+    ``loops`` False leaves the joints that close a loop of a tree to Gauss–Seidel, ``pairs``
+    False only those that close it on a pair of bodies a tree joint already joins
+    (``joint_tree.unpair``); ``geometric``: whether the tree solve stiffens the inertia
+    (``GEOMETRIC`` if None)."""
     j = joints.arrays()
     n = j.a.shape[0]
     rows = JointRows(np.empty((n, 3)), np.empty((n, 3)), np.empty((n, 3, 3)), np.empty((n, 3)),
@@ -91,6 +97,8 @@ def prepare(bodies, joints, dt: float, beta: float = BETA, loops: bool = True,
         rows.mode[rows.mode >= jt.DIRECT] = jt.ITERATIVE
     if not loops:
         rows.mode[rows.mode == jt.LOOP] = jt.ITERATIVE
+    elif not pairs:
+        jt.unpair(j.a, j.b, movable, rows.mode)
     js.prepare(j.a, j.b, j.local_a, j.frame_a, j.frame_b, j.kind, j.limits, j.local_b,
                b.inv_mass, b.inv_inertia_world, b.position, b.orientation, dt,
                beta, rows.ra, rows.rb, rows.kmat, rows.bias,
@@ -156,7 +164,8 @@ def velocity_pass(bodies, joints, rows: JointRows) -> float:
         change = float(joint_predict.end_targets(
             j.a, j.b, j.local_a, j.local_b, b.position, b.orientation, b.velocity,
             b.angular_velocity, b.inv_inertia, rows.dt, rows.mode, rows.ra, rows.rb, rows.keep,
-            rows.bias, np.empty((n, 3)), np.empty((n, 4)), rows.speed))
+            rows.bias, np.empty((n, 3)), np.empty((n, 4)), rows.speed,
+            jt.DIRECT if rows.soft_loops else jt.LOOP))
     change = max(change, float(js.solve_pass(
         j.a, j.b, rows.ra, rows.rb, rows.kmat, rows.bias, rows.axis, rows.mass, rows.target,
         rows.row, b.inv_mass, b.inv_inertia_world, b.velocity, b.angular_velocity,
@@ -168,9 +177,10 @@ def velocity_pass(bodies, joints, rows: JointRows) -> float:
                                             rows.rb, rows.bias, dinv, low, b.velocity,
                                             b.angular_velocity, joints.point)))
         if loops.shape[0]:
+            scales = (rows.mass_scale, rows.impulse_scale) if rows.soft_loops else (1.0, 0.0)
             change = max(change, float(jl.solve(
                 loops, nodes, parent, count, n, where, j.a, j.b, rows.ra, rows.rb, rows.bias,
-                dinv, low, sinv, b.velocity, b.angular_velocity, joints.point)))
+                dinv, low, sinv, b.velocity, b.angular_velocity, joints.point, *scales)))
     return change
 
 

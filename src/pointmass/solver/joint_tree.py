@@ -161,3 +161,22 @@ def _neighbours(node, ja, jb, movable, adjacent, start, n):
         if b >= 0:
             out.append(b)
     return out
+
+
+@njit(cache=True, nogil=True)
+def unpair(ja, jb, movable, mode):
+    """Send back to Gauss–Seidel (ITERATIVE) every LOOP joint that joins the same two bodies
+    (or a body and the world) as a DIRECT joint does: two point blocks on one pair of bodies
+    are redundant by structure (the second point cannot move along the line to the first
+    through the tree: its mass through the tree, ``joint_loops``, is singular there, and
+    near singular while either joint is open), so such a pair is held by soft rows."""
+    for k in range(ja.shape[0]):
+        if mode[k] != LOOP:
+            continue
+        c, d = _ends(ja, jb, movable, k)
+        for j in range(ja.shape[0]):
+            if mode[j] == DIRECT:
+                a, b = _ends(ja, jb, movable, j)
+                if (c == a and d == b) or (c == b and d == a):
+                    mode[k] = ITERATIVE
+                    break
