@@ -59,8 +59,9 @@ class World:
             v3's soft step, ``solver/body_soft.py``: after one collision pass, 4 substeps of
             soft contacts and relax, then restitution; it keeps linear and angular momentum
             exactly, stands towers of 30 boxes and holds joints per substep
-            (``solver/joint_soft.py``), but is not the default yet: a loop of joints (a rope
-            bridge) is solved by soft rows and opens; see that module).
+            (``solver/joint_soft.py``), but is not the default yet: joint limits give under
+            load (the ragdoll's) and pairs of moving bodies can end a step deep; see that
+            module).
 
         settings: The solver's tuning numbers (``pm.SolverSettings``; its defaults when None):
             tolerances, caps on passes, when the exact solve and the threads are used.
