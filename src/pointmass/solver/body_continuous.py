@@ -66,6 +66,7 @@ import math
 import numpy as np
 from numba import njit
 
+from ..rigid.islands import find_root
 from ..rigid.scalar import qmul, qrot, qrot_inv
 from ..rigid.shapes import BOX, SPHERE
 from ..rigid.sweep import _half_width
@@ -263,15 +264,6 @@ def _impact(i, j, limit, x_start, q_start, sweep, shape, size, plane_n, plane_d,
 
 
 @njit(cache=True, nogil=True)
-def _root(root, k):
-    """The representative of body k's joint group (union–find, paths halved)."""
-    while root[k] != k:
-        root[k] = root[root[k]]
-        k = root[k]
-    return k
-
-
-@njit(cache=True, nogil=True)
 def clamp(pos, quat, vel, ang, inv_mass, inv_inertia, inv_i, shape, size, awake, x_start,
           q_start, dt, plane_n, plane_d, exclude):
     """Move every fast awake body back to its earliest time of impact with a static body or a
@@ -341,16 +333,16 @@ def clamp(pos, quat, vel, ang, inv_mass, inv_inertia, inv_i, shape, size, awake,
     # bone moved back alone opened its joints (the ragdoll demo with the soft step: 14-46 mm)
     root = np.arange(nb)
     for e in range(exclude.shape[0]):
-        a = _root(root, exclude[e] // nb)
-        b = _root(root, exclude[e] % nb)
+        a = find_root(root, exclude[e] // nb)
+        b = find_root(root, exclude[e] % nb)
         root[max(a, b)] = min(a, b)
     earliest = np.ones(nb)
     for k in range(nb):
-        r = _root(root, k)
+        r = find_root(root, k)
         earliest[r] = min(earliest[r], best[k])
     for k in range(nb):
         if solid[k] and inv_mass[k] != 0.0 and awake[k]:
-            best[k] = earliest[_root(root, k)]
+            best[k] = earliest[find_root(root, k)]
     count = 0
     for k in range(nb):
         if best[k] >= 1.0:

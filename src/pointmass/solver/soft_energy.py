@@ -69,6 +69,7 @@ import numpy as np
 from numba import njit
 
 from ..rigid.bodies import _kinetic_energy
+from ..rigid.islands import find_root
 from ..rigid.scalar import qrot, qrot_inv
 
 #: The restitution may exceed its budget by this fraction of the kinetic energy (round-off of
@@ -289,14 +290,6 @@ class Budget:
 
 
 # --- joints: an island's substep leaves no more energy than it began with ------------------------
-@njit(cache=True, inline="always")
-def _root(parent, i):
-    while parent[i] != i:
-        parent[i] = parent[parent[i]]
-        i = parent[i]
-    return i
-
-
 @njit(cache=True, nogil=True)
 def joint_islands(count, ja, jb, ca, cb, inv_mass, label, grounded):
     """The islands of the view's ``count`` bodies that hold a joint: bodies linked by joints
@@ -321,7 +314,7 @@ def joint_islands(count, ja, jb, ca, cb, inv_mass, label, grounded):
             live_a = inv_mass[a] > 0.0
             live_b = b >= 0 and inv_mass[b] > 0.0
             if live_a and live_b:
-                parent[_root(parent, a)] = _root(parent, b)
+                parent[find_root(parent, a)] = find_root(parent, b)
             elif live_a:
                 held[a] = True
             elif live_b:
@@ -330,12 +323,12 @@ def joint_islands(count, ja, jb, ca, cb, inv_mass, label, grounded):
     k = 0
     for i in range(count):  # islands with a joint are numbered
         if jointed[i] and inv_mass[i] > 0.0:
-            r = _root(parent, i)
+            r = find_root(parent, i)
             if island[r] < 0:
                 island[r] = k
                 k += 1
     for i in range(count):
-        label[i] = island[_root(parent, i)] if inv_mass[i] > 0.0 else -1
+        label[i] = island[find_root(parent, i)] if inv_mass[i] > 0.0 else -1
         grounded[i] = False
     for i in range(count):
         if label[i] >= 0 and held[i]:
