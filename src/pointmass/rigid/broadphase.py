@@ -92,21 +92,23 @@ def sweep(low, high, order, inv_mass, out_a, out_b):
     return count if count <= cap else -count
 
 
-def find_pairs(bodies, margin: float, dt: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+@njit(cache=True, nogil=True)
+def find_pairs(pos, quat, vel, ang, shape, size, inv_mass, margin, dt):
     """(first (P,), second (P,), reach (N,)) for the bodies' AABBs; see the module docstring."""
-    b = bodies
-    n = b.count
+    n = pos.shape[0]
     low = np.empty((n, 3))
     high = np.empty((n, 3))
     reach = np.empty(n)
-    bounds(b.position, b.orientation, b.velocity, b.angular_velocity, b.shape, b.size,
-           margin, dt, low, high, reach)
-    order = np.argsort(low[:, 0], kind="stable")
+    bounds(pos, quat, vel, ang, shape, size, margin, dt, low, high, reach)
+    xs = np.empty(n)
+    for i in range(n):
+        xs[i] = low[i, 0]
+    order = np.argsort(xs, kind="stable")
     cap = max(4 * n, 16)
     while True:
         out_a = np.empty(cap, np.int64)
         out_b = np.empty(cap, np.int64)
-        count = sweep(low, high, order, b.inv_mass, out_a, out_b)
+        count = sweep(low, high, order, inv_mass, out_a, out_b)
         if count >= 0:
             return out_a[:count], out_b[:count], reach
         cap = -count

@@ -24,7 +24,7 @@ from numba import njit
 
 from ..keys import BODY_KEY_LIMIT, body_pair_key, body_plane_key
 from .box_box import APART, WORK_FLOATS, WORK_INTS, box_box_into
-from .broadphase import bounds, find_pairs, sweep
+from .broadphase import find_pairs
 from .contacts import BodyContacts
 from .manifold import MAX_POINTS
 from .narrow_box import box_plane
@@ -222,34 +222,10 @@ def plane_contacts(pos, quat, shape, size, inv_mass, friction, restitution, reac
 
 
 @njit(cache=True, nogil=True)
-def _collide_all(pos, quat, vel, ang, shape, size, inv_mass, friction, restitution, margin, dt,
-                 plane):
-    """``generate`` without sleeping or excluded pairs, in one compiled call: the broadphase
-    (``find_pairs``), ``spin_reach``, the pairs' and the planes' narrow phase, each the same
-    kernel as the Python path calls, with the same arithmetic (a tiny world's collision was
-    ~12 numpy calls and 4 kernel calls a step). ``plane`` (P, 7): each plane's normal,
-    offset, μ, e (−1: the body's) and serial. Returns the rows a, b, normal, r_a, r_b, depth,
-    μ, e, key, cut to their count."""
-    n = pos.shape[0]
-    low = np.empty((n, 3))
-    high = np.empty((n, 3))
-    reach = np.empty(n)
-    bounds(pos, quat, vel, ang, shape, size, margin, dt, low, high, reach)
-    xs = np.empty(n)
-    for i in range(n):
-        xs[i] = low[i, 0]
-    order = np.argsort(xs, kind="stable")
-    cap = max(4 * n, 16)
-    while True:
-        first = np.empty(cap, np.int64)
-        second = np.empty(cap, np.int64)
-        pairs = sweep(low, high, order, inv_mass, first, second)
-        if pairs >= 0:
-            break
-        cap = -pairs
-    first = first[:pairs]
-    second = second[:pairs]
-    turn = np.empty(n)  # ``spin_reach``, in its order of operations
+def spin_reach(ang, shape, size, dt):
+    """(N,) how far [m] each body's spin can carry a point of its shape in ``dt``."""
+    n = ang.shape[0]
+    turn = np.empty(n)
     for i in range(n):
         if shape[i] == SPHERE:
             radius = size[i, 0]
@@ -257,6 +233,39 @@ def _collide_all(pos, quat, vel, ang, shape, size, inv_mass, friction, restituti
             radius = math.sqrt(size[i, 0] ** 2 + size[i, 1] ** 2 + size[i, 2] ** 2)
         spin = math.sqrt(ang[i, 0] ** 2 + ang[i, 1] ** 2 + ang[i, 2] ** 2)
         turn[i] = spin * radius * dt
+    return turn
+
+
+@njit(cache=True, nogil=True)
+def _collide_all(pos, quat, vel, ang, shape, size, inv_mass, friction, restitution, margin, dt,
+                 plane, active, exclude):
+    """``generate`` in one compiled call (a tiny world's collision was ~12 numpy calls and 4
+    kernel calls a step): the broadphase (``find_pairs``), the pairs with an awake body
+    (``active``) that are not excluded (``exclude``: sorted keys lo·N + hi), ``spin_reach``,
+    the pairs' and the awake bodies' planes' narrow phase. ``plane`` (P, 7): each plane's
+    normal, offset, μ, e (−1: the body's) and serial. Returns the rows a, b, normal, r_a,
+    r_b, depth, μ, e, key, cut to their count."""
+    n = pos.shape[0]
+    first, second, reach = find_pairs(pos, quat, vel, ang, shape, size, inv_mass, margin, dt)
+    keep = 0
+    for k in range(first.shape[0]):
+        i, j = first[k], second[k]
+        if not (active[i] or active[j]):
+            continue
+        if exclude.shape[0]:
+            key = i * n + j
+            at = np.searchsorted(exclude, key)
+            if at < exclude.shape[0] and exclude[at] == key:
+                continue
+        first[keep], second[keep] = i, j
+        keep += 1
+    first = first[:keep]
+    second = second[:keep]
+    on_planes = np.empty(n)  # the plane kernel skips w = 0: sleeping bodies
+    for i in range(n):
+        on_planes[i] = inv_mass[i] if active[i] else 0.0
+    turn = spin_reach(ang, shape, size, dt)
+    pairs = keep
     n_planes = plane.shape[0]
     rows = MAX_POINTS * (pairs + n * n_planes)
     out_a = np.empty(rows, np.int64)
@@ -283,7 +292,7 @@ def _collide_all(pos, quat, vel, ang, shape, size, inv_mass, friction, restituti
             plane_mu[s] = plane[s, 4]
             plane_e[s] = plane[s, 5]
             serial[s] = np.int64(plane[s, 6])
-        count = plane_contacts(pos, quat, shape, size, inv_mass, friction, restitution, reach,
+        count = plane_contacts(pos, quat, shape, size, on_planes, friction, restitution, reach,
                                margin, plane_n, plane_d, plane_mu, plane_e, serial, count,
                                out_a, out_b, out_n, out_ra, out_rb, out_d, out_mu, out_e,
                                out_key)
@@ -300,13 +309,6 @@ def plane_table(planes) -> np.ndarray:
                       p.serial) for p in planes], dtype=np.float64).reshape(len(planes), 7)
 
 
-def spin_reach(bodies, dt: float) -> np.ndarray:
-    """(N,) how far [m] each body's spin can carry a point of its shape in ``dt``."""
-    b = bodies
-    radius = np.where(b.shape == SPHERE, b.size[:, 0], np.sqrt((b.size ** 2).sum(axis=1)))
-    return np.sqrt((b.angular_velocity ** 2).sum(axis=1)) * radius * dt
-
-
 def generate(bodies, planes, dt: float, contacts: BodyContacts,
              margin: float = SPECULATIVE_MARGIN, active: np.ndarray | None = None,
              exclude: np.ndarray | None = None) -> None:
@@ -320,38 +322,10 @@ def generate(bodies, planes, dt: float, contacts: BodyContacts,
     if b.count > BODY_KEY_LIMIT:
         raise ValueError(f"at most {BODY_KEY_LIMIT} bodies collide (contact keys have 20 bits "
                          f"for a body), got {b.count}")
-    if active is None and (exclude is None or not exclude.shape[0]):
-        contacts.take(*_collide_all(b.position, b.orientation, b.velocity, b.angular_velocity,
-                                    b.shape, b.size, b.inv_mass, b.friction, b.restitution,
-                                    float(margin), float(dt), plane_table(planes)))
-        return
-    first, second, reach = find_pairs(b, margin, dt)
-    on_planes = b.inv_mass
-    if active is not None:
-        live = active[first] | active[second]
-        first, second = first[live], second[live]
-        on_planes = np.where(active, b.inv_mass, 0.0)  # the plane kernel skips w = 0
-    if exclude is not None and exclude.shape[0] and first.shape[0]:
-        keep = ~np.isin(first * b.count + second, exclude)
-        first, second = first[keep], second[keep]
-    n_planes = len(planes)
-    contacts.resize(MAX_POINTS * (first.shape[0] + b.count * n_planes))
-    c = contacts
-    out = (c.a, c.b, c.normal, c.r_a, c.r_b, c.depth, c.friction, c.restitution, c.key)
-    turn = spin_reach(b, dt)
-    count = pair_contacts(b.position, b.orientation, b.velocity, turn, b.shape,
-                          b.size, b.inv_mass, b.friction, b.restitution, first, second, reach,
-                          margin, dt, *out)
-    if n_planes:
-        plane_n = np.array([p.normal for p in planes], dtype=np.float64).reshape(n_planes, 3)
-        plane_d = np.array([p.offset for p in planes], dtype=np.float64)
-        # −1: a material the plane leaves to the body (not set; see pointmass.collide)
-        plane_mu = np.array([-1.0 if p.body_friction is None else p.body_friction
-                             for p in planes], dtype=np.float64)
-        plane_e = np.array([-1.0 if p.body_restitution is None else p.body_restitution
-                            for p in planes], dtype=np.float64)
-        serial = np.array([p.serial for p in planes], dtype=np.int64)
-        count = plane_contacts(b.position, b.orientation, b.shape, b.size, on_planes,
-                               b.friction, b.restitution, reach, margin, plane_n, plane_d,
-                               plane_mu, plane_e, serial, count, *out)
-    contacts.trim(count)
+    if active is None:
+        active = np.ones(b.count, np.bool_)
+    if exclude is None:
+        exclude = np.empty(0, np.int64)
+    contacts.take(*_collide_all(b.position, b.orientation, b.velocity, b.angular_velocity,
+                                b.shape, b.size, b.inv_mass, b.friction, b.restitution,
+                                float(margin), float(dt), plane_table(planes), active, exclude))
