@@ -566,7 +566,7 @@ class World:
         b = self.bodies
         h = dt / body_soft.SUBSTEPS
         x_start, q_start = b.position.copy(), b.orientation.copy()  # the sweep's start
-        kept, acc = self._apply_body_forces(dt)
+        kept, acc = self._apply_body_forces(h)  # for the first substep (and found again)
         p = self.particles
         integrated = p.awake.copy()  # the particles the integration moved (and kicked by dt)
         try:  # the first kicks (here, and of woken bodies); ``body_soft`` gives the others
@@ -577,9 +577,12 @@ class World:
             if packed is not None:
                 view = packed
                 self._first_particle_kick(packed, integrated, h, dt, acc)
+            forces = None
+            if self.body_forces:  # found again every substep, where the bodies then are
+                forces = partial(self._refind_body_forces, view, kept, h)
             rows = body_soft.step(view, b, self.body_contacts, acc, self.body_impulses, dt,
                                   self.solver.restitution_threshold, self._gravity,
-                                  self.joints if self.joints else None)
+                                  self.joints if self.joints else None, forces=forces)
         finally:
             if kept is not None:
                 b.force[:], b.torque[:] = kept
@@ -621,7 +624,8 @@ class World:
             packed.velocity[n:][woken] = a * h * (p.damping[i] ** h)[:, None]
 
     def _apply_body_forces(self, dt: float):
-        """Let the body force generators add to the user's forces for this substep, wake the
+        """Let the body force generators add to the user's forces for this substep (of ``dt``:
+        the soft step's first, whose others find them again), wake the
         bodies they push, and return (the user's own forces and torques to put back after the
         substep, or None; what the forces alone give each body [m/s²], for the resting-contact
         trick)."""
@@ -638,6 +642,23 @@ class World:
         if self._sleep:
             sleeping.wake_pushed(b)
         return kept, force_acceleration(b.inv_mass, b.force, self._gravity)
+
+    def _refind_body_forces(self, view, kept, h: float) -> np.ndarray:
+        """The soft step's forces found again within its step (``body_soft.step``'s
+        ``forces``): the user's own forces and torques, plus every body force generator at the
+        bodies' current state (read from ``view``, the packed copy when particles take part);
+        returns what the forces alone give each body [m/s²]."""
+        b = self.bodies
+        if view is not b:
+            n = b.count
+            b.position[:] = view.position[:n]
+            b.orientation[:] = view.orientation[:n]
+            b.velocity[:] = view.velocity[:n]
+            b.angular_velocity[:] = view.angular_velocity[:n]
+        b.force[:], b.torque[:] = kept
+        for generator in self.body_forces:
+            generator.apply(b, h)
+        return force_acceleration(b.inv_mass, b.force, self._gravity)
 
     def _kick(self, dt: float, which: np.ndarray) -> None:
         """The velocity half of the bodies' integration over ``dt``, for the bodies of mask

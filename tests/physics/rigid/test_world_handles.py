@@ -89,11 +89,20 @@ def test_shape_sizes_that_overflow_or_vanish_name_the_parameter(make, message):
 
 def test_a_rigid_only_world_whose_energy_overflows_raises_floating_point_error():
     """It raised numpy's "zero-size array to reduction operation maximum" (no particles)."""
-    world = pm.World(gravity=(0, 0, 0))
+    world = pm.World(gravity=(0, 0, 0), body_step="impulses")
     world.add_body(Sphere(1.0), velocity=(1e200, 0, 0))
     stats = world.step(DT)
     with pytest.raises(FloatingPointError, match=r"kinetic energy overflowed.*1e\+200"):
         _ = stats.kinetic_energy
+
+
+def test_the_soft_step_refuses_a_velocity_too_large_to_square():
+    """The soft step checks what it leaves (``body_soft._refuse_blow_up``): the step itself
+    raises, naming the body and its velocity, before anything reads the energy."""
+    world = pm.World(gravity=(0, 0, 0), body_step="soft")
+    world.add_body(Sphere(1.0), velocity=(1e200, 0, 0))
+    with pytest.raises(FloatingPointError, match=r"body 0 .*1e\+200"):
+        world.step(DT)
 
 
 @pytest.mark.parametrize(("stage", "kicks"), [("impulses", 1), ("soft", body_soft.SUBSTEPS)])
