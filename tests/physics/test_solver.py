@@ -188,15 +188,17 @@ def test_a_frictionless_pile_settles_without_overlap_or_sinking():
 
 
 @pytest.mark.slow
-@pytest.mark.xfail(reason="measured mean speed 0.028–0.070 m/s after 600 steps over seeds 0–11 "
-                          "(target 0.02): the frictionless pile is still settling at 10 s — the "
-                          "same pit solved as soft spheres with a 170x shorter step "
-                          "(benchmarks/reference_dem_pit.py) gives 0.018–0.129, 1 of 12 seeds "
-                          "≤ 0.02 (RESULTS.md, session 24)",
-                   strict=False)
+@pytest.mark.xfail(reason="measured mean speed after 600 steps over seeds 0–11 (stop 37): "
+                          "0.0076, 0.053, 0.071, 0.036, 0.055, 0.017, 0.0079, 0.032, 0.036, "
+                          "0.065, 0.056, 0.022 m/s (target 0.02; 3 of 12 meet it): the pile "
+                          "is still settling at 10 s; pits of 1 000 rest and sleep by 30 s "
+                          "(tests/physics/test_pit_rest.py)",
+                   strict=True)
 def test_a_frictionless_pile_comes_to_rest_in_ten_seconds():
-    """The issue's target: mean speed ≤ 0.02 m/s after 600 steps at N = 1000."""
-    world = ball_pit(1000)
-    for _ in range(600):
-        world.step(DT)
-    assert np.linalg.norm(world.particles.velocity, axis=1).mean() <= 0.02
+    """The issue's target: mean speed ≤ 0.02 m/s after 600 steps at N = 1000, for every
+    layout (seeds 0–3; seed 0 alone met it, by chance)."""
+    for seed in range(4):
+        world = ball_pit(1000, seed)
+        for _ in range(600):
+            world.step(DT)
+        assert np.linalg.norm(world.particles.velocity, axis=1).mean() <= 0.02, seed
