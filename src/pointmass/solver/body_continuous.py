@@ -66,6 +66,11 @@ boxes and spheres, 0°–60°, 50–500 m/s, 16 phases): rough boxes passed in u
 phases and sank up to 106 mm into the wall, smooth ones up to 37 mm → none passes, deepest
 overlap at a step's end 2.91 mm rough, 0.14 mm smooth; benchmarks/rigid_fuzz.py's
 joint-free scenes ending a step > 2 cm deep: 28 → 5 of 91 (each a pair of moving bodies).
+With item 6 (the soft step, 300 steps, seeds 0–999: 307 joint-free scenes): 19 → 5 deep
+(seeds 0–299: 5 → 1 of 91), 0 explosions before and after; the stage's own step changes a
+force-free scene's kinetic energy by ≤ 4e-16 relative. Its cost with sleep off, the first 120
+steps: the pyramid 0.8 ms of an 89 ms step, the 1000-box pit 1.4 ms of 235 ms (before: 1.5 ms
+of 85, 1.3 of 250; a loaded 2-core machine).
 """
 
 from __future__ import annotations

@@ -275,12 +275,12 @@ def test_random_scenes_that_went_deep_in_a_wall_do_not():
 
 
 #: Joint-free scenes of seeds 0–299 (91 scenes, issue 30's count), 300 steps, with a step
-#: ending > 2 cm deep. Target ≤ 1 %. Measured: 5 of 91 (seeds 74, 79, 140, 217, 278), each a
-#: pair of moving bodies (2.5–14 cm; a small fast body and a large one of very different
-#: mass). Before this stage 28 of 91, 27 of them a fast body in a wall or the ground (the
-#: last session's note: 37; the default stage: 4). Pairs of moving bodies are left to the
-#: rows, for momentum (``body_continuous``'s docstring).
-SLOW_DEEP = 5
+#: ending > 2 cm deep. Target ≤ 1 %. Measured: 1 of 91 (seed 79: from step 210 a 7.8 t
+#: sphere presses a 10 kg box into the ground, 2.5–7.6 cm, a mass ratio of 770 that the
+#: rows' passes do not carry; no fast body). Before the stage parted moving pairs: 5 (seeds
+#: 79, 128, 140, 217, 265), each a pair of moving bodies; before the stage itself 28, 27 of
+#: them a fast body in a wall or the ground (the default stage: 4).
+SLOW_DEEP = 1
 
 
 @pytest.mark.slow
