@@ -63,9 +63,9 @@ joint-free random scenes of the slow seeds (1000–1999, 120 steps) still end a 
 Force-free random scenes gain no kinetic energy in a step, with joints or without (issue 30's
 1e-9; ``soft_energy``: the restitution's budget, the friction warm start clamped to the
 solve's cone before the drift, bodies on scenery alone and islands that joints or contacts
-link capped at their energy after the kick; ``joint_soft``'s docstring has the jointed counts). Tried
-and taken out: warm starting across steps only the points that touch, without friction (the
-30-box tower then walked 32 cm in 60 s).
+link capped at their energy after the kick; ``joint_soft``'s docstring has the jointed
+counts). Tried and taken out: warm starting across steps only the points that touch,
+without friction (the 30-box tower then walked 32 cm in 60 s).
 """
 
 from __future__ import annotations
