@@ -276,12 +276,14 @@ def test_random_scenes_that_went_deep_in_a_wall_do_not():
 
 
 #: Joint-free scenes of seeds 0–299 (91 scenes, issue 30's count), 300 steps, with a step
-#: ending > 2 cm deep. Target ≤ 1 %. Measured: 1 of 91 (seed 79: from step 210 a 7.8 t
-#: sphere presses a 10 kg box into the ground, 2.5–7.6 cm, a mass ratio of 770 that the
-#: rows' passes do not carry; no fast body). Before the stage parted moving pairs: 5 (seeds
-#: 79, 128, 140, 217, 265), each a pair of moving bodies; before the stage itself 28, 27 of
-#: them a fast body in a wall or the ground (the default stage: 4).
-SLOW_DEEP = 1
+#: ending > 2 cm deep. Target ≤ 1 %. Measured: none, with ``soft_energy.limit_islands`` on
+#: contact islands too (before it, 1 of 91: seed 79, from step 210 a 7.8 t sphere pressing a
+#: 10 kg box into the ground, 2.5–7.6 cm, a mass ratio of 770 that the rows' passes do not
+#: carry; with the cap its deepest is 1.96 cm, just inside the bound: the class is not fixed).
+#: Before the stage parted moving pairs: 5 (seeds 79, 128, 140, 217, 265), each a pair of
+#: moving bodies; before the stage itself 28, 27 of them a fast body in a wall or the ground
+#: (the default stage: 4).
+SLOW_DEEP = 0
 
 
 @pytest.mark.slow
