@@ -1,6 +1,7 @@
 """Continuous collision of the soft step: a fast body is moved back along its step to where it
 first comes within ``SLOP`` of a static body or a plane (Box2D v3's ``b2SolveContinuous``,
-``src/solver.c``, with ``b2TimeOfImpact``'s target separation).
+``src/solver.c``, with ``b2TimeOfImpact``'s target separation); a fast body and a moving one
+that the step left deep in each other are parted to ``SLOP`` (item 6 below).
 
 Why: the soft step finds its rows once a step, at the step's start (``rigid/collide.py``,
 with the margin of what each body can travel). Measured on benchmarks/rigid_fuzz.py's
@@ -38,25 +39,50 @@ What (after the substeps and the restitution):
 5. The body is put at the earliest time of impact's pose; its velocities are kept (Box2D's
    too; the spin in the body's frame): it arrives with them, and the next step's collision
    finds the contact within its travel and its row stops it.
+6. Then pairs of a fast body and another moving one, only where the step left them more than
+   ``SLOP`` inside each other and ``SLOP`` deeper than they started (what their rows did not
+   hold: a pair the rows caught ends touching, so a well-caught collision is never touched
+   here). While they still move the way they came in, their relative motion is rewound
+   about their centre of mass, along their relative velocity, to where they are ``SLOP``
+   apart (``_rewind``: momentum, angular momentum and energy kept to round-off); else (the
+   rows turned them, or a spin took them in, which no translation undoes) both go back along
+   their sweeps to the pair's time of impact, as against a static body.
 
 Momentum and energy: the stage moves poses only; a body turned back keeps its spin in its
 own frame (as the default stage's projection, ``body_energy.keep_spin``), so its kinetic
 energy, linear momentum and |I·ω| are those the solve gave. The angular momentum about a
 fixed origin changes by Δx × p of a moved body (nothing when its end velocity is along its
-step's displacement, as in free flight) and by its spin's turn back. It acts only against
-static bodies and planes, which take momentum anyway (as Box2D's clamp, which does not
-conserve it either). Pairs of moving bodies are left to the rows, so their collisions keep
-both momenta to round-off. Tried and taken out: sweeping a fast body against the moving
-bodies' end poses too (Box2D's bullets) took the random scenes deep in something from 6 (as
-then measured) to 3 of 91; sweeping both bodies of a pair back to its time of impact made
-two 0.1 m boxes colliding at 5 m/s lose 2 % of their angular momentum (issue 26 point 8 asks
-for 1e-9). Those pairs need their rows refreshed within the step instead.
+step's displacement, as in free flight) and by its spin's turn back. Against static bodies and
+planes that is no loss (they take momentum anyway; Box2D's clamp does not conserve it either);
+a pair of moving bodies is rewound about its centre of mass where it can be, which keeps
+both momenta, and swept back (changing the angular momentum as above) only where the rows
+turned it or a spin took it in. Pairs the rows held are never moved. Tried before the depth
+gate: sweeping a fast body against the moving bodies' end poses (Box2D's bullets), or both
+bodies of every fast pair back to its time of impact, acted on collisions the rows had
+caught: two 0.1 m boxes colliding at 5 m/s lost 2 % of their angular momentum.
 
 Measured (dt 1/60; before → after): the thin wall (tests/physics/rigid/test_thin_wall.py,
 boxes and spheres, 0°–60°, 50–500 m/s, 16 phases): rough boxes passed in up to 4 of 16
 phases and sank up to 106 mm into the wall, smooth ones up to 37 mm → none passes, deepest
 overlap at a step's end 2.91 mm rough, 0.14 mm smooth; benchmarks/rigid_fuzz.py's
 joint-free scenes ending a step > 2 cm deep: 28 → 5 of 91 (each a pair of moving bodies).
+With item 6 (the soft step, 300 steps, seeds 0–999: 307 joint-free scenes): 19 → 5 deep
+(seeds 0–299: 5 → 1 of 91), 0 explosions before and after; the stage's own step changes a
+force-free scene's kinetic energy by ≤ 4e-16 relative. Its cost with sleep off, the first 120
+steps: the pyramid 0.8 ms of an 89 ms step, the 1000-box pit 1.4 ms of 235 ms (before: 1.5 ms
+of 85, 1.3 of 250; a loaded 2-core machine). With ``soft_energy.limit_islands`` on contact
+islands too (what a pair this stage parted could gain in its next collision, seed 380): the
+slow fuzz's seeds 1000–1999 at 120 steps end a step deep in 38 of 1000 scenes (main before
+both: 56), 6 of the 332 joint-free (14) and 32 of the 668 jointed (42); seeds 0–299, 300
+steps, joint-free: none of 91.
+
+Not covered: pairs with a jointed body (skipped above: moving one body of a joint group
+alone opens its joints). Of the first 19 jointed scenes of seeds 1000–1999 that end deep,
+7 are such a pair (a free body hitting a jointed one, e.g. seed 1121: a 25 g box at 48 m/s
+into a 10.5 kg jointed box); the other 12 are a light jointed body in a wall or the ground
+(mass ratios in the group of 370 to 7e5, most with the joint open 0.3–4.5 m): the joint's
+rows pull it in, and this stage, which lets a body end a step SLOP deeper than it began,
+lets it creep in a few mm a step (seed 1264: a 3 g plank hinged to an 805 kg box).
 """
 
 from __future__ import annotations
@@ -264,10 +290,101 @@ def _impact(i, j, limit, x_start, q_start, sweep, shape, size, plane_n, plane_d,
 
 
 @njit(cache=True, nogil=True)
+def _pair_deep(i, j, pos, quat, shape, size, x_start, q_start, axes_i, axes_j):
+    """Whether the step left bodies i and j more than ``SLOP`` inside each other and more than
+    ``SLOP`` deeper than they started: what their rows did not hold (a bounce the rows caught
+    ends touching; an overlap they push out ends no deeper)."""
+    end, _, _, _ = _pair_gap(shape[i], size[i], pos[i], quat[i], shape[j], size[j], pos[j],
+                             quat[j], axes_i, axes_j)
+    if end >= -SLOP:
+        return False
+    start, _, _, _ = _pair_gap(shape[i], size[i], x_start[i], q_start[i], shape[j], size[j],
+                               x_start[j], q_start[j], axes_i, axes_j)
+    return end < start - SLOP
+
+
+@njit(cache=True, nogil=True)
+def _move_back(k, t, pos, quat, ang, inv_inertia, inv_i, x_start, q_start, sweep, axes_i,
+               axes_j):
+    """Put body k at fraction t of its sweep, its spin kept in its own frame."""
+    (px, py, pz), (qw, qx, qy, qz) = _pose(k, t, x_start, q_start, sweep)
+    # the spin in the body's own frame is kept, so its kinetic energy ½ω·Iω is (a world
+    # ω kept while the body turned back changed it: force-free random scenes gained
+    # energy in a step, 30 of 100 against 27 without the stage)
+    _box_axes(quat[k, 0], quat[k, 1], quat[k, 2], quat[k, 3], axes_j)
+    wb0 = axes_j[0, 0] * ang[k, 0] + axes_j[0, 1] * ang[k, 1] + axes_j[0, 2] * ang[k, 2]
+    wb1 = axes_j[1, 0] * ang[k, 0] + axes_j[1, 1] * ang[k, 1] + axes_j[1, 2] * ang[k, 2]
+    wb2 = axes_j[2, 0] * ang[k, 0] + axes_j[2, 1] * ang[k, 1] + axes_j[2, 2] * ang[k, 2]
+    pos[k, 0], pos[k, 1], pos[k, 2] = px, py, pz
+    quat[k, 0], quat[k, 1], quat[k, 2], quat[k, 3] = qw, qx, qy, qz
+    _box_axes(qw, qx, qy, qz, axes_i)  # rows: the body axes in world, R's columns
+    for u in range(3):
+        ang[k, u] = wb0 * axes_i[0, u] + wb1 * axes_i[1, u] + wb2 * axes_i[2, u]
+    for a in range(3):
+        for b in range(3):
+            v = 0.0
+            for u in range(3):
+                v += axes_i[u, a] * inv_inertia[k, u] * axes_i[u, b]
+            inv_i[k, a, b] = v
+
+
+@njit(cache=True, nogil=True)
+def _rewind(i, j, pos, quat, vel, inv_mass, shape, size, x_start, dt, axes_i, axes_j):
+    """Moving bodies i and j that the step left deep (``_pair_deep``), if they still move the
+    way they came in: their relative motion is rewound, up to one step
+    at their end velocities, to where they are ``SLOP`` apart, about their centre of mass
+    (each moves by its share, inverse-mass weighted, of a displacement along their relative
+    velocity). Returns whether it moved them: not when rewinding a whole step leaves them
+    closer than ``SLOP`` (the turn of a spinning body took them in, which only the sweep
+    undoes).
+
+    Why along the relative velocity: a displacement δ_i = w_i·D, δ_j = −w_j·D (w = 1/m over
+    1/m_i + 1/m_j) keeps the centre of mass, and changes the angular momentum about any
+    origin by m_i·δ_i × (v_i − v_j): nothing when D is along v_i − v_j. Velocities and
+    orientations are kept, so linear and angular momentum and kinetic energy are those the
+    solve gave, to round-off (issue 26 point 8). (Moving each body back along its own sweep,
+    as against a static body, changed a fast pair's angular momentum by 5 %.)"""
+    rx, ry, rz = vel[i, 0] - vel[j, 0], vel[i, 1] - vel[j, 1], vel[i, 2] - vel[j, 2]
+    closed = 0.0  # their relative velocity along their relative travel this step
+    for k in range(3):
+        closed += (rx, ry, rz)[k] * (pos[i, k] - x_start[i, k] - pos[j, k] + x_start[j, k])
+    if closed <= 0.0:
+        return False  # the rows turned it: not moving on the way it came in
+    wi = inv_mass[i] / (inv_mass[i] + inv_mass[j])
+    # u over [0, 1]: from the pose rewound by a whole step (u = 0) to the step's end (u = 1);
+    # conservative advancement from u = 0 to where the gap first closes to SLOP (translation
+    # only: the gap along n closes at most at −n·(v_i − v_j)·dt over u)
+    pi = np.empty(3)
+    pj = np.empty(3)
+    u = 0.0
+    for it in range(ITERATIONS + 1):
+        back = (1.0 - u) * dt
+        for k in range(3):
+            r = (rx, ry, rz)[k]
+            pi[k] = pos[i, k] - wi * back * r
+            pj[k] = pos[j, k] + (1.0 - wi) * back * r
+        gap, nx, ny, nz = _pair_gap(shape[i], size[i], pi, quat[i], shape[j], size[j], pj,
+                                    quat[j], axes_i, axes_j)
+        if it == 0 and gap < SLOP:
+            return False  # a step's travel back does not part them: a turn took them in
+        if gap <= SLOP + TOLERANCE or it == ITERATIONS:
+            break
+        rate = -(nx * rx + ny * ry + nz * rz) * dt
+        if rate <= 0.0:
+            break  # the rest of the way does not close it along n: stop here (apart)
+        u = min(1.0, u + (gap - SLOP) / rate)
+    for k in range(3):
+        pos[i, k] = pi[k]
+        pos[j, k] = pj[k]
+    return True
+
+
+@njit(cache=True, nogil=True)
 def clamp(pos, quat, vel, ang, inv_mass, inv_inertia, inv_i, shape, size, awake, x_start,
           q_start, dt, plane_n, plane_d, exclude):
     """Move every fast awake body back to its earliest time of impact with a static body or a
-    plane this step (module docstring); ``x_start``, ``q_start``: the poses of the step's start;
+    plane this step, then part the pairs of a fast body and a moving one that ended it deep
+    (module docstring); ``x_start``, ``q_start``: the poses of the step's start;
     ``exclude``: sorted keys lo·N + hi of jointed pairs (not swept against each other, and moved
     back together). Returns how many bodies it moved."""
     nb = pos.shape[0]
@@ -345,28 +462,41 @@ def clamp(pos, quat, vel, ang, inv_mass, inv_inertia, inv_i, shape, size, awake,
             best[k] = earliest[find_root(root, k)]
     count = 0
     for k in range(nb):
-        if best[k] >= 1.0:
+        if best[k] < 1.0:
+            _move_back(k, best[k], pos, quat, ang, inv_inertia, inv_i, x_start, q_start, sweep,
+                       axes_i, axes_j)
+            count += 1
+    # pairs of moving bodies that the rows let end the step deep (``_pair_deep``), not
+    # jointed: rewound about their centre of mass while they still move the way they came in
+    # (``_rewind``), else each back along its sweep to the pair's time of impact
+    jointed = np.zeros(nb, np.bool_)
+    for e in range(exclude.shape[0]):
+        jointed[exclude[e] // nb] = True
+        jointed[exclude[e] % nb] = True
+    for i in range(nb):
+        if not fast[i] or jointed[i]:
             continue
-        (px, py, pz), (qw, qx, qy, qz) = _pose(k, best[k], x_start, q_start, sweep)
-        # the spin in the body's own frame is kept, so its kinetic energy ½ω·Iω is (a world
-        # ω kept while the body turned back changed it: force-free random scenes gained
-        # energy in a step, 30 of 100 against 27 without the stage)
-        _box_axes(quat[k, 0], quat[k, 1], quat[k, 2], quat[k, 3], axes_j)
-        wb0 = axes_j[0, 0] * ang[k, 0] + axes_j[0, 1] * ang[k, 1] + axes_j[0, 2] * ang[k, 2]
-        wb1 = axes_j[1, 0] * ang[k, 0] + axes_j[1, 1] * ang[k, 1] + axes_j[1, 2] * ang[k, 2]
-        wb2 = axes_j[2, 0] * ang[k, 0] + axes_j[2, 1] * ang[k, 1] + axes_j[2, 2] * ang[k, 2]
-        pos[k, 0], pos[k, 1], pos[k, 2] = px, py, pz
-        quat[k, 0], quat[k, 1], quat[k, 2], quat[k, 3] = qw, qx, qy, qz
-        _box_axes(qw, qx, qy, qz, axes_i)  # rows: the body axes in world, R's columns
-        for u in range(3):
-            ang[k, u] = wb0 * axes_i[0, u] + wb1 * axes_i[1, u] + wb2 * axes_i[2, u]
-        for a in range(3):
-            for b in range(3):
-                v = 0.0
-                for u in range(3):
-                    v += axes_i[u, a] * inv_inertia[k, u] * axes_i[u, b]
-                inv_i[k, a, b] = v
-        count += 1
+        for j in range(nb):
+            if (j == i or inv_mass[j] == 0.0 or not solid[j] or not awake[j] or jointed[j]
+                    or (fast[j] and j < i)):
+                continue  # (a pair of two fast bodies once, from its lower index)
+            cx, cy, cz = pos[i, 0] - pos[j, 0], pos[i, 1] - pos[j, 1], pos[i, 2] - pos[j, 2]
+            if math.sqrt(cx * cx + cy * cy + cz * cz) > sweep[i, 8] + sweep[j, 8]:
+                continue  # their bounding spheres apart
+            if not _pair_deep(i, j, pos, quat, shape, size, x_start, q_start, axes_i, axes_j):
+                continue
+            if _rewind(i, j, pos, quat, vel, inv_mass, shape, size, x_start, dt, axes_i,
+                       axes_j):
+                count += 2
+                continue
+            t = _impact(i, j, 1.0, x_start, q_start, sweep, shape, size, plane_n, plane_d,
+                        axes_i, axes_j)
+            for k in (i, j):
+                if t < best[k]:
+                    best[k] = t
+                    _move_back(k, t, pos, quat, ang, inv_inertia, inv_i, x_start, q_start,
+                               sweep, axes_i, axes_j)
+                    count += 1
     return count
 
 

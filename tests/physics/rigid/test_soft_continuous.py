@@ -128,31 +128,123 @@ def test_a_fast_box_stops_at_a_static_box_wall_it_would_pass():
     assert SLOP - 1e-12 <= gap <= SLOP + TOLERANCE
 
 
-def test_two_moving_boxes_keep_both_momenta_through_a_fast_collision():
-    # the stage leaves pairs of moving bodies to the rows: 0.1 m boxes at ±60 m/s (12 of
-    # their half-extents a step), off centre, one spinning, no gravity, e 0, μ 0.5 (issue 26
-    # point 8 with fast bodies). (With the other box spinning at 30 rad/s too, the soft step
-    # itself, before this stage, drifts by 0.10 relative: not this stage's, left to the lead.)
+def _fast_boxes():
+    """0.1 m boxes at ±60 m/s (12 of their half-extents a step), off centre, one spinning, no
+    gravity, e 0, μ 0.5 (issue 26 point 8 with fast bodies)."""
     world = pm.World(gravity=(0.0, 0.0, 0.0), body_step="soft")
     world.add_body(Box((0.05, 0.05, 0.05)), (-1.0, 0.02, 0.0), mass=1.0,
                    velocity=(60.0, 0.0, 0.0))
     world.add_body(Box((0.05, 0.05, 0.05)), (1.0, -0.02, 0.01), mass=2.0,
                    velocity=(-60.0, 0.0, 0.0), angular_velocity=(5.0, 0.0, 0.0))
+    return world
 
-    def momenta():
-        b = world.bodies
-        m = 1.0 / b.inv_mass[:, None]
-        p = (m * b.velocity).sum(axis=0)
-        spin = [np.linalg.solve(b.inv_inertia_world[i], b.angular_velocity[i])
-                for i in range(b.count)]
-        return p, (np.cross(b.position, m * b.velocity) + spin).sum(axis=0)
 
-    p0, l0 = momenta()
+def _momenta(world):
+    b = world.bodies
+    m = 1.0 / b.inv_mass[:, None]
+    p = (m * b.velocity).sum(axis=0)
+    spin = [np.linalg.solve(b.inv_inertia_world[i], b.angular_velocity[i])
+            for i in range(b.count)]
+    return p, (np.cross(b.position, m * b.velocity) + spin).sum(axis=0)
+
+
+def test_two_fast_moving_boxes_collide_rather_than_pass_through_each_other():
+    # before the stage rewound moving pairs, the rows let these end their first step 6 mm
+    # deep and still closing at 47 m/s, and the next step the boxes passed through each other
+    # untouched (on at +8.3 and −34.1 m/s): rewound to SLOP apart, they collide (e 0: the
+    # light box is carried back, both near the common velocity −20 m/s; measured −18.2 and
+    # −20.9, the boxes glancing off each other's edges)
+    world = _fast_boxes()
+    p0, _ = _momenta(world)
     for _ in range(30):
         world.step(DT)
-    p1, l1 = momenta()
+        assert fuzz.overlap(world, fuzz.BodyContacts()) < SLOP
+    b = world.bodies
+    assert b.velocity[:, 0] == pytest.approx([-20.0, -20.0], abs=3.0)
+    p1, _ = _momenta(world)
     assert np.abs(p1 - p0).max() <= 1e-9 * np.abs(p0).max() + 1e-12
+
+
+@pytest.mark.xfail(strict=True, reason=(
+    "the kick's spin cap (rigid/step.py's MAX_ROTATION, Box2D's maxRotation: π/4 a substep, "
+    "188 rad/s at h = 1/240) slows the light box, which the off-centre hit spins to 249 "
+    "rad/s: |L| 3.79 -> 3.00 (-21 %) in steps 2-3; measured stage by stage, every contact "
+    "stage, the island cap and the rewind keep L to 1e-15. Before the rewind the boxes "
+    "passed through each other untouched, which kept it trivially."))
+def test_two_fast_moving_boxes_keep_their_angular_momentum_through_the_collision():
+    world = _fast_boxes()
+    _, l0 = _momenta(world)
+    for _ in range(30):
+        world.step(DT)
+    _, l1 = _momenta(world)
     assert np.abs(l1 - l0).max() <= 1e-9 * np.linalg.norm(l0) + 1e-12
+
+
+def _moving_pair(end_b):
+    """Two 0.1 m boxes, no gravity: A from x = −0.5 at 60 m/s (1 m a step), B from 0.5 at
+    −3 m/s, put where a step that let A through its rows would leave them (A at 0.5, B at
+    ``end_b``)."""
+    world = pm.World(gravity=(0.0, 0.0, 0.0), body_step="soft")
+    world.add_body(Box((0.05, 0.05, 0.05)), (-0.5, 0.0, 0.0), mass=1.0,
+                   velocity=(60.0, 0.0, 0.0))
+    world.add_body(Box((0.05, 0.05, 0.05)), (0.5, 0.0, 0.0), mass=2.0,
+                   velocity=(-3.0, 0.0, 0.0), angular_velocity=(0.0, 0.0, 1.0))
+    b = world.bodies
+    x0, q0 = b.position.copy(), b.orientation.copy()
+    b.position[0, 0] = 0.5
+    b.position[1, 0] = end_b
+    return world, x0, q0
+
+
+def test_a_pair_of_moving_bodies_that_ends_deep_is_rewound_about_its_centre_of_mass():
+    # A's step ends 5 cm past B's centre, the pair still moving on at 63 m/s: their relative
+    # motion is rewound along it, each by its inverse-mass share (A 2/3, B 1/3), to where
+    # the gap is SLOP; velocities and orientations kept, so momentum, angular momentum and
+    # energy are the solve's
+    world, x0, q0 = _moving_pair(0.45)
+    b = world.bodies
+    velocity, spin = b.velocity.copy(), b.angular_velocity.copy()
+
+    def momenta():
+        m = 1.0 / b.inv_mass[:, None]
+        spins = [np.linalg.solve(b.inv_inertia_world[k], b.angular_velocity[k])
+                 for k in range(b.count)]
+        return (m * b.velocity).sum(axis=0), (np.cross(b.position, m * b.velocity)
+                                             + spins).sum(axis=0)
+
+    p0, l0 = momenta()
+    energy = world.kinetic_energy()
+    assert sweep_back(b, [], None, x0, q0, DT) == 2
+    gap = b.position[1, 0] - b.position[0, 0] - 0.1
+    assert SLOP - 1e-12 <= gap <= SLOP + TOLERANCE
+    assert 1.0 * b.position[0, 0] + 2.0 * b.position[1, 0] == pytest.approx(1.4, abs=1e-12)
+    assert b.position[:, 1:].tolist() == x0[:, 1:].tolist()  # along the relative velocity
+    assert b.velocity.tolist() == velocity.tolist()
+    assert b.angular_velocity.tolist() == spin.tolist()
+    p1, l1 = momenta()
+    assert np.abs(p1 - p0).max() == 0.0
+    assert np.abs(l1 - l0).max() <= 1e-14 * np.linalg.norm(l0)
+    assert world.kinetic_energy() == energy
+
+
+def test_a_pair_of_moving_bodies_that_ends_touching_is_left_to_its_rows():
+    # the same step ending with the faces touching (as a bounce the rows caught): unchanged
+    world, x0, q0 = _moving_pair(0.6)
+    b = world.bodies
+    end = b.position.copy()
+    assert sweep_back(b, [], None, x0, q0, DT) == 0
+    assert b.position.tolist() == end.tolist()
+
+
+def test_the_random_scene_of_a_small_sphere_sliding_round_a_large_one_stays_out():
+    """rigid_fuzz seed 140 (gravity, six walls, five spheres of 4 cm–0.95 m at 7–50 m/s):
+    a 4.3 cm, 30 kg sphere sliding at 10 m/s round a 0.79 m, 4.75 kg one that is moving too.
+    The step's row keeps the normal of its start, a tangent plane the small sphere slides
+    along, 0.17 m a step, into the curved surface (≈ L²/2R = 1.7 cm a step): before the
+    stage swept moving pairs it ended step 20 4.1 cm inside, 3.8 cm after step 21."""
+    o = fuzz.run(140, 40, body_step="soft")
+    assert o.refused is None
+    assert o.deepest < fuzz.DEEP, f"{o.deepest:.4f} m inside at step {o.deep}"
 
 
 # --- issue 30: random scenes that end a step deep in something --------------------------------
@@ -184,12 +276,14 @@ def test_random_scenes_that_went_deep_in_a_wall_do_not():
 
 
 #: Joint-free scenes of seeds 0–299 (91 scenes, issue 30's count), 300 steps, with a step
-#: ending > 2 cm deep. Target ≤ 1 %. Measured: 5 of 91 (seeds 74, 79, 140, 217, 278), each a
-#: pair of moving bodies (2.5–14 cm; a small fast body and a large one of very different
-#: mass). Before this stage 28 of 91, 27 of them a fast body in a wall or the ground (the
-#: last session's note: 37; the default stage: 4). Pairs of moving bodies are left to the
-#: rows, for momentum (``body_continuous``'s docstring).
-SLOW_DEEP = 5
+#: ending > 2 cm deep. Target ≤ 1 %. Measured: none, with ``soft_energy.limit_islands`` on
+#: contact islands too (before it, 1 of 91: seed 79, from step 210 a 7.8 t sphere pressing a
+#: 10 kg box into the ground, 2.5–7.6 cm, a mass ratio of 770 that the rows' passes do not
+#: carry; with the cap its deepest is 1.96 cm, just inside the bound: the class is not fixed).
+#: Before the stage parted moving pairs: 5 (seeds 79, 128, 140, 217, 265), each a pair of
+#: moving bodies; before the stage itself 28, 27 of them a fast body in a wall or the ground
+#: (the default stage: 4).
+SLOW_DEEP = 0
 
 
 @pytest.mark.slow

@@ -130,12 +130,88 @@ def test_limit_scenery_scales_only_bodies_alone_on_scenery_to_their_start_energy
                                                                     w[1:])
 
 
+def test_limit_islands_caps_a_free_contact_island_keeping_both_momenta():
+    import numpy as np
+
+    from pointmass.solver import soft_energy
+
+    # rows: bodies 0 and 1 touch each other (a free island); 2 and 3 touch each other and 3
+    # the ground (a grounded one); 4 is on the ground alone (``limit_scenery``'s); 5 in none
+    ca, cb = np.array([0, 2, 3, 4]), np.array([1, 3, -1, -1])
+    alone = soft_energy.scenery_only(6, ca, cb)
+    label = np.empty(6, np.int64)
+    grounded = np.empty(6, np.bool_)
+    world = pm.World(gravity=(0.0, 0.0, 0.0))
+    for k in range(6):
+        world.add_body(Box((0.6, 0.2, 0.4)), (3.0 * k, 0.5 * k, 0.0), (0.9, 0.3, 0.2, 0.1),
+                       mass=2.0 + k, velocity=(1.0, 2.0 - k, 3.0),
+                       angular_velocity=(3.0, -1.0, 2.0 * k))
+    b = world.bodies
+    count = soft_energy.islands(6, np.empty(0, np.int64), np.empty(0, np.int64), ca, cb,
+                                b.inv_mass, alone, label, grounded)
+    assert count == 2 and label.tolist() == [0, 0, 1, 1, -1, -1]
+    assert grounded[:2].tolist() == [False, True]
+    start = np.zeros(2)
+    soft_energy.island_energies(label, b.velocity, b.angular_velocity, b.orientation,
+                                b.inv_mass, b.inv_inertia, start)
+
+    def momenta():
+        m = 1.0 / b.inv_mass[:2, None]
+        spin = [np.linalg.solve(b.inv_inertia_world[i], b.angular_velocity[i])
+                for i in range(2)]
+        return (m * b.velocity[:2]).sum(axis=0), (np.cross(b.position[:2], m * b.velocity[:2])
+                                                  + spin).sum(axis=0)
+
+    p0, l0 = momenta()
+    # what a substep's rows might leave: more energy in both islands, the same momenta in the
+    # free one (equal and opposite impulses at one point)
+    push = np.array([0.7, -0.3, 0.2])
+    arm = np.array([1.5, 0.25, 0.1])
+    for i, sign in ((0, 1.0), (1, -1.0)):
+        b.velocity[i] += sign * push * b.inv_mass[i]
+        b.angular_velocity[i] += sign * b.inv_inertia_world[i] @ np.cross(
+            arm - (b.position[i] - b.position[0]), push)
+    b.velocity[2:4] *= 1.02
+    b.angular_velocity[2:4] *= 1.02
+    v, w = b.velocity.copy(), b.angular_velocity.copy()
+    p1, l1 = momenta()
+    assert np.allclose(p1, p0, rtol=0, atol=1e-12) and np.allclose(l1, l0, rtol=0, atol=1e-12)
+    after = np.zeros(2)
+    soft_energy.island_energies(label, b.velocity, b.angular_velocity, b.orientation,
+                                b.inv_mass, b.inv_inertia, after)
+    assert (after > start * (1 + 1e-6)).all()
+    assert soft_energy.limit_islands(label, grounded[:2], start, b.position, b.velocity,
+                                     b.angular_velocity, b.orientation, b.inv_mass,
+                                     b.inv_inertia) == 2
+    soft_energy.island_energies(label, b.velocity, b.angular_velocity, b.orientation,
+                                b.inv_mass, b.inv_inertia, after)
+    assert after == pytest.approx(start, rel=1e-13)
+    p2, l2 = momenta()  # the free island keeps both momenta (its rigid motion is kept)
+    assert np.abs(p2 - p0).max() <= 1e-12 * np.abs(p0).max()
+    assert np.abs(l2 - l0).max() <= 1e-12 * np.abs(l0).max()
+    # the grounded island is scaled whole; the bodies of no island are left
+    assert np.allclose(b.velocity[2:4], v[2:4] / 1.02, rtol=1e-13)
+    assert np.array_equal(b.velocity[4:], v[4:]) and np.array_equal(b.angular_velocity[4:],
+                                                                    w[4:])
+
+
+def test_a_pair_parted_by_the_continuous_stage_then_gains_no_energy_in_its_contact():
+    # rigid_fuzz seed 380 (force-free, no joints: three boxes, a sphere, two static spheres,
+    # three particles): with the continuous stage parting deep moving pairs, step 24 gained
+    # 4.2e-7 in the soft solve of two boxes' contact, an island no joint holds, which
+    # ``limit_islands`` did not cap; now it caps every island that rows link (measured
+    # 3.3e-15 at worst over 300 steps)
+    o = fuzz.run(380, 40, **SOFT)
+    assert o.force_free and o.joints == 0 and o.refused is None
+    assert o.gain is None, f"step {o.gain} gained {o.worst_gain:.3g}"
+
+
 #: Largest fraction of joint-free scenes (with and without gravity) that may end a step with
-#: an overlap > 2 cm. Issue 30 asks for 1 %; measured with the soft step: 37 of 91 (seeds
-#: 0–299, 300 steps; the default stage: 4 of 91). A ratchet, not the goal: fast small bodies
-#: (10–50 m/s, spinning to 190 rad/s) meet the ground where the step's one collision pass
-#: did not look.
-SOFT_DEEP = 0.45
+#: an overlap > 2 cm. Issue 30 asks for 1 %; measured with the soft step on these 40 scenes
+#: (seeds 0–140, 60 steps): 0, since the continuous stage parts pairs of moving bodies that a
+#: step left deep (``body_continuous``; before: 2, seeds 79 and 140; before the stage itself,
+#: 37 of 91 over seeds 0–299).
+SOFT_DEEP = 0.0
 
 
 def test_overlaps_of_random_scenes_stay_bounded():
