@@ -14,6 +14,12 @@ tree shows it, S⁻¹, where Box2D's row has its own two bodies' (K⁻¹): a sof
 holds a load F with a gap K·F/ω², so the bridge's second anchor, pulled by the weight of 50
 planks but sprung with one plank's mass, opened 2.7 mm (at 60 Hz); sprung with the tree's
 mass along the rope (S 0.013 against K 0.5 1/kg) it holds to 0.09 mm.
+
+The angular rows of the tree's joints (a hinge's locks, the limits) are solved the same way in
+the soft step (``row_masses``, ``row_solve``), as rigid rows: one row's mass through the tree
+is 1/S with S = u·(ΔωB − ΔωA) for a unit angular impulse about its axis u, and its impulse is a
+load the tree's joints take up, so each row is exact given the tree and the others
+(``joint_soft``, "Angular rows").
 """
 
 from __future__ import annotations
