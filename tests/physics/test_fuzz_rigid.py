@@ -215,9 +215,10 @@ def test_soft_step_refuses_a_velocity_it_cannot_square_in_the_step():
 #: 15 gain, 9 end a step deep. With the restitution's budget, the scenery limit and the
 #: islands' limit with joints (``solver/soft_energy.py``): none gains (issue 30's target met),
 #: 9 end a step deep (2 of them other seeds), the fastest 2.2e3 m/s (seed 53; 3.2e3 before).
-#: With the islands' limit on every island that rows link (contacts too) and the continuous
-#: stage parting deep moving pairs: none gains, 8 end a step deep (6, 24, 33, 53, 77, 176, 180,
-#: 181). The deep count is a ratchet; issue 30's target is ≤ 1 % of scenes.
+#: With the islands' limit on every island that rows link (contacts too), the continuous
+#: stage parting deep moving pairs and the tree's angular rows rigid through the tree
+#: (``solver/joint_soft.py``, "Angular rows"): MEASURE. The deep count is a ratchet; issue
+#: 30's target is ≤ 1 % of scenes.
 SOFT_JOINTED_GAINS = (0, 0)
 SOFT_JOINTED_DEEP = 8
 

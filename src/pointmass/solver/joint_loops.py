@@ -14,6 +14,12 @@ tree shows it, S⁻¹, where Box2D's row has its own two bodies' (K⁻¹): a sof
 holds a load F with a gap K·F/ω², so the bridge's second anchor, pulled by the weight of 50
 planks but sprung with one plank's mass, opened 2.7 mm (at 60 Hz); sprung with the tree's
 mass along the rope (S 0.013 against K 0.5 1/kg) it holds to 0.09 mm.
+
+The angular rows of the tree's joints (a hinge's locks, the limits) are solved the same way in
+the soft step (``row_masses``, ``row_solve``), as rigid rows: one row's mass through the tree
+is 1/S with S = u·(ΔωB − ΔωA) for a unit angular impulse about its axis u, and its impulse is a
+load the tree's joints take up, so each row is exact given the tree and the others
+(``joint_soft``, "Angular rows").
 """
 
 from __future__ import annotations
@@ -112,4 +118,93 @@ def solve(loops, nodes, parent, count, n, where, ja, jb, ra, rb, bias, dinv, low
             dx, dy, dz = rate(ja, jb, ra, rb, vel, ang, j)
             dx, dy, dz = dx - cx, dy - cy, dz - cz
             largest = max(largest, np.sqrt(dx * dx + dy * dy + dz * dz))
+    return largest
+
+
+@njit(cache=True, inline="always")
+def _turn_load(z, where, a, b, ux, uy, uz, x):
+    """z ← the angular impulse x·u on body b and −x·u on body a (their tree rows)."""
+    z[:] = 0.0
+    for side in range(2):
+        body = b if side == 0 else a
+        if body < 0 or where[body] < 0:
+            continue
+        p = where[body]
+        sign = x if side == 0 else -x
+        z[p, 3] += sign * ux
+        z[p, 4] += sign * uy
+        z[p, 5] += sign * uz
+
+
+@njit(cache=True, inline="always")
+def _turn_rate(where, a, b, ux, uy, uz, ang):
+    """u·(ωB − ωA) from per-node angular velocities ``ang`` (a tree solution's rows)."""
+    out = 0.0
+    for side in range(2):
+        body = b if side == 0 else a
+        if body < 0 or where[body] < 0:
+            continue
+        p = where[body]
+        d = ang[p, 3] * ux + ang[p, 4] * uy + ang[p, 5] * uz
+        out += d if side == 0 else -d
+    return out
+
+
+@njit(cache=True, nogil=True)
+def row_masses(nodes, parent, count, n, where, ja, jb, mode, tree, axis, row, dinv, low, mass,
+               through):
+    """For every angular row (a hinge's locks, a limit) of a joint whose ``mode`` is
+    ``tree`` or above (DIRECT, LOOP): its mass through the tree, 1/S with S = u·(ΔωB − ΔωA)
+    for a unit angular impulse on the row (the tree's joints held), into ``mass`` (J, 3),
+    and ``through`` (J, 3) set. A row the tree cannot turn (S not > 0) keeps its own."""
+    z = np.zeros((count, 6))
+    y = np.zeros((count, 6))
+    for j in range(ja.shape[0]):
+        if mode[j] < tree:
+            continue
+        a, b = ja[j], jb[j]
+        for s in range(3):
+            if row[j, s] == 0 or mass[j, s] == 0.0:
+                continue
+            ux, uy, uz = axis[j, s, 0], axis[j, s, 1], axis[j, s, 2]
+            _turn_load(z, where, a, b, ux, uy, uz, 1.0)
+            substitute(nodes, parent, count, n, dinv, low, z, y)
+            k = _turn_rate(where, a, b, ux, uy, uz, y)
+            if k > 0.0 and np.isfinite(k):
+                mass[j, s] = 1.0 / k
+                through[j, s] = True
+
+
+@njit(cache=True, nogil=True)
+def row_solve(nodes, parent, count, n, where, ja, jb, axis, row, mass, target, through, dinv,
+              low, vel, ang, point, lam, limit):
+    """One Gauss–Seidel pass over the angular rows ``through`` the tree (``row_masses``),
+    each a rigid row exact given the others and the tree: the impulse that brings its Ċ to its
+    target with the tree's mass (a ``limit`` row never pulls), applied as a load the tree's
+    joints take up (their impulses go to ``point``). Returns the largest change of a row's Ċ
+    [rad/s]."""
+    z = np.zeros((count, 6))
+    y = np.zeros((count, 6))
+    largest = 0.0
+    for j in range(ja.shape[0]):
+        a, b = ja[j], jb[j]
+        for s in range(3):
+            if not through[j, s]:
+                continue
+            ux, uy, uz = axis[j, s, 0], axis[j, s, 1], axis[j, s, 2]
+            rel = 0.0
+            for k in range(3):
+                wb = ang[b, k] if b >= 0 else 0.0
+                rel += (wb - ang[a, k]) * (ux if k == 0 else uy if k == 1 else uz)
+            total = lam[j, s] + (target[j, s] - rel) * mass[j, s]
+            if row[j, s] == limit and total < 0.0:
+                total = 0.0
+            d = total - lam[j, s]
+            if d == 0.0:
+                continue
+            lam[j, s] = total
+            largest = max(largest, abs(d) / mass[j, s])
+            _turn_load(z, where, a, b, ux, uy, uz, d)
+            substitute(nodes, parent, count, n, dinv, low, z, y)
+            apply(nodes, count, n, y, vel, ang, point)
     return largest

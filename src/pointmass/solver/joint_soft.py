@@ -32,9 +32,13 @@ velocities. What each pass solves is ``joint_solver.velocity_pass``:
   the tree; with its own bodies' mass, K·F/ω²: the 50-plank rope bridge's second anchor,
   holding the weight of the bridge with the spring of one plank, opened 2.749 mm; now
   0.085 mm), aimed by the bias (not at the end pose), rigid in the relax;
-- the angular rows (a hinge's locks, the limits), and the point blocks of the joints that
-  the tree cannot take, by Gauss–Seidel, soft in the solve (the spring's mass and impulse
-  scales: Box2D's rows). Among these are the loops that join a pair of bodies a tree joint
+- the angular rows (a hinge's locks, the limits) of the tree's joints, through the tree
+  (``joint_loops.row_solve``) as rigid rows aimed at closing their angle within the substep
+  (Ċ = −C/h; an open limit stays speculative), each exact given the tree and the others,
+  rigid in the relax too ("Angular rows" below);
+- the point blocks of the joints that the tree cannot take, and their angular rows, by
+  Gauss–Seidel, soft in the solve (the spring's mass and impulse scales: Box2D's rows).
+  Among these are the loops that join a pair of bodies a tree joint
   already joins (``joint_tree.unpair``: a ball and a hinge on one pair, two hinges): two
   point blocks on one pair are redundant by structure, their mass through the tree singular
   along the line between them and near singular wherever either is open, and solved through
@@ -82,6 +86,22 @@ a substep (the aim at the end pose relaxed at another pose's arms and inertia):
 free jointed scenes, 47 gained in a step, 15 by > 1e-3; none now). Measured now, seeds 0–199,
 143 jointed scenes, 300 steps: 0 explosions, fastest 2.2e3 m/s (seed 53), 9 end a step with
 an overlap > 2 cm.
+
+Angular rows. As Box2D's soft rows (sprung at ``JOINT_HERTZ`` with their own two bones'
+inertia, Gauss–Seidel beside the tree) a ragdoll's locks and limits gave under the loads that
+reach them through contacts and the tree: an elbow's lock under the torso lying on the arm
+carried 14 N·m on a spring of I·ω² = 347 N·m/rad and rested 2.35° off its axis (seed 1);
+seeds 1, 4, 5 rested 2.35°, 2.98°, 0.71° past their stops (gate 0.5°) and swung to 4.35°,
+4.11°, 3.32° in the fall (gate 3°). A spring's give under a load is the load over its
+stiffness, so no hertz holds every load; sprung with the tree's mass (S⁻¹, as the loops)
+the elbow's spring hardly changed (the load is local) and seeds 1, 4 rested 4.2°, 1.8°.
+Rigid, a row's give is none whatever the load: the row aims at Ċ = −C/h, so the drift
+closes the angle, and the relax (Ċ = 0) takes back the velocity that closed it, as the
+tree's point blocks aimed at the end pose do. Rigid rows by Gauss–Seidel on their own two
+bones did not converge against the tree (in the fall 5.5°, 2.0°, 0.9°, 5.4°, 5.1°, before
+``soft_energy.limit_islands``); through the tree each row is exact given the others, and the
+ragdoll's seeds 0–19 rest within 0.1° and fall within 1.7° (``tests/physics/rigid/
+test_joint_limits_soft.py``).
 
 Why the relax pass needs the pose after the drift. A pendulum turning at ω: the drift carries
 the bob along the tangent of the pose the substep started in, so the joint opens by the
@@ -145,7 +165,7 @@ def prepare(view, joints, h: float) -> SoftJointRows:
     factors), targets for the solve (Ċ = −b·C) and for the relax pass (0)."""
     rate, mass_scale, impulse_scale = softness(h)
     rows = joint_solver.prepare(view, joints, h, beta=rate * h, loops=True,
-                                geometric=GEOMETRIC, pairs=False)
+                                geometric=GEOMETRIC, pairs=False, rows_through=True)
     rows.mass_scale = mass_scale
     rows.impulse_scale = impulse_scale
     rows.soft_loops = True  # loops: soft rows through the tree, with the tree's mass
@@ -155,6 +175,10 @@ def prepare(view, joints, h: float) -> SoftJointRows:
     size = np.sqrt((rows.bias * rows.bias).sum(axis=1))
     rows.bias *= np.minimum(1.0, CONTACT_SPEED / np.maximum(size, 1e-300))[:, None]
     rows.speed = CONTACT_SPEED  # ... and so is the aim at the end pose
+    # the angular rows of the tree's joints: rigid through the tree, aimed at closing their
+    # angle within the substep (module docstring, "Angular rows")
+    shut = rows.through & ~((rows.row == LIMIT) & (rows.target <= 0.0))
+    rows.target[shut] /= rate * h
     # relax: no bias; a limit still open keeps its speculative target (≤ 0), a violated one
     # (target > 0) and every equality row aim at Ċ = 0
     target = np.where((rows.row == LIMIT) & (rows.target < 0.0), rows.target, 0.0)
@@ -171,20 +195,21 @@ def warm_start(view, joints, rows: SoftJointRows) -> float:
     alpha = float(warm_scale(j.a, j.b, r.ra, r.rb, r.axis, r.row, r.mode, r.kmat, r.mass,
                              r.target, r.bias, view.inv_mass, view.inv_inertia_world,
                              view.velocity, view.angular_velocity, joints.point, joints.turn,
-                             r.impulse_scale / r.mass_scale))
+                             r.impulse_scale / r.mass_scale, r.through))
     joint_solver.warm_start(view, joints, r)
     return alpha
 
 
 @njit(cache=True, nogil=True)
 def warm_scale(ja, jb, ra, rb, axis, row, mode, kmat, mass, target, bias, inv_mass, inv_i,
-               vel, ang, point, turn, soft):
+               vel, ang, point, turn, soft, rigid):
     """Scale the kept impulses λ (``point`` of the Gauss–Seidel joints, every ``turn``) in
     place by the α ∈ [0, 1] that minimises the soft solve's objective along them,
     F(α·λ) = ½α²·λᵀ(A + Γ)λ − α·λᵀ(t − J·v), and return α (module docstring, "The warm
     start"). A = J·M⁻¹·Jᵀ, Γ = ``soft``·diag(A) the soft rows' compliance (an open limit is
-    rigid), t their targets, v the velocities now. A DIRECT joint's point block is not warm
-    started (``joint_stages.warm_start``) and takes no part."""
+    rigid, and so is a row marked ``rigid`` (J, 3): solved through the tree), t their targets,
+    v the velocities now. A DIRECT joint's point block is not warm started
+    (``joint_stages.warm_start``) and takes no part."""
     n = vel.shape[0]
     load = np.zeros((n, 6))  # per body: the impulse and the angular impulse λ applies
     aim = 0.0  # λᵀt
@@ -218,7 +243,7 @@ def warm_scale(ja, jb, ra, rb, axis, row, mode, kmat, mass, target, bias, inv_ma
                     load[i, 4] += sign * x * uy
                     load[i, 5] += sign * x * uz
             aim += x * target[j, s]
-            if not (row[j, s] == LIMIT and target[j, s] <= 0.0):
+            if not (rigid[j, s] or (row[j, s] == LIMIT and target[j, s] <= 0.0)):
                 compliance += soft * x * x / mass[j, s]
     square = 0.0  # λᵀAλ
     along = 0.0  # λᵀJ·v

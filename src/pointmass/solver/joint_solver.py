@@ -11,6 +11,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ..rigid.joint_rows import LIMIT
 from . import joint_direct as jd
 from . import joint_loops as jl
 from . import joint_predict, joint_project
@@ -73,22 +74,28 @@ class JointRows:
     #: ``mass_scale`` and ``impulse_scale`` with the tree's mass, targets the position bias)
     #: rather than rigid rows aimed at the end pose (the default stage).
     soft_loops: bool = False
+    #: Per angular row (J, 3): whether it is solved through the tree as a rigid row
+    #: (``joint_loops.row_solve``; ``mass`` then the tree's) rather than by Gauss–Seidel on
+    #: its own two bodies (``joint_soft``: the soft step's rows of the tree's joints).
+    through: np.ndarray | None = None
 
 
 def prepare(bodies, joints, dt: float, beta: float = BETA, loops: bool = True,
-            geometric: bool | None = None, pairs: bool = True) -> JointRows:
+            geometric: bool | None = None, pairs: bool = True,
+            rows_through: bool = False) -> JointRows:
     """The rows of ``joints`` (a ``rigid.joint_set.Joints``) in the bodies' current pose, their
     targets Ċ = −β·C/dt (``beta``: the fraction of a position error taken back in dt);
     ``loops`` False leaves the joints that close a loop of a tree to Gauss–Seidel, ``pairs``
     False only those that close it on a pair of bodies a tree joint already joins
     (``joint_tree.unpair``); ``geometric``: whether the tree solve stiffens the inertia
-    (``GEOMETRIC`` if None)."""
+    (``GEOMETRIC`` if None); ``rows_through``: whether the angular rows of the tree's joints
+    are solved through it (``joint_loops.row_masses``)."""
     j = joints.arrays()
     n = j.a.shape[0]
     rows = JointRows(np.empty((n, 3)), np.empty((n, 3)), np.empty((n, 3, 3)), np.empty((n, 3)),
                      np.empty((n, 3, 3)), np.empty((n, 3)), np.empty((n, 3)),
                      np.empty((n, 3), np.int64), np.zeros((n, 3)), np.empty(n, np.int64), (),
-                     dt)
+                     dt, through=np.zeros((n, 3), np.bool_))
     b = bodies
     awake = getattr(b, "awake", None)
     movable = b.inv_mass > 0.0
@@ -105,6 +112,10 @@ def prepare(bodies, joints, dt: float, beta: float = BETA, loops: bool = True,
                rows.axis, rows.mass, rows.target, rows.row)
     rows.tree = _factor(b, j, rows, movable, joints.point, dt,
                         GEOMETRIC if geometric is None else geometric)
+    if rows_through and rows.tree:
+        nodes, parent, count, dinv, low, _, where, _ = rows.tree
+        jl.row_masses(nodes, parent, count, b.inv_mass.shape[0], where, j.a, j.b, rows.mode,
+                      jt.DIRECT, rows.axis, rows.row, dinv, low, rows.mass, rows.through)
     # the errors now, from the Baumgarte targets js.prepare set (−β·C/dt)
     rows.keep = rows.bias * (-(1.0 - beta) * dt / beta) if beta > 0.0 else rows.bias * 0.0
     return rows
@@ -169,7 +180,7 @@ def velocity_pass(bodies, joints, rows: JointRows) -> float:
     change = max(change, float(js.solve_pass(
         j.a, j.b, rows.ra, rows.rb, rows.kmat, rows.bias, rows.axis, rows.mass, rows.target,
         rows.row, b.inv_mass, b.inv_inertia_world, b.velocity, b.angular_velocity,
-        joints.point, rows.lam, rows.mode, rows.mass_scale, rows.impulse_scale)))
+        joints.point, rows.lam, rows.mode, rows.mass_scale, rows.impulse_scale, rows.through)))
     if rows.tree:
         nodes, parent, count, dinv, low, loops, where, sinv = rows.tree
         n = b.inv_mass.shape[0]
@@ -181,6 +192,11 @@ def velocity_pass(bodies, joints, rows: JointRows) -> float:
             change = max(change, float(jl.solve(
                 loops, nodes, parent, count, n, where, j.a, j.b, rows.ra, rows.rb, rows.bias,
                 dinv, low, sinv, b.velocity, b.angular_velocity, joints.point, *scales)))
+        if rows.through.any():
+            change = max(change, float(jl.row_solve(
+                nodes, parent, count, n, where, j.a, j.b, rows.axis, rows.row, rows.mass,
+                rows.target, rows.through, dinv, low, b.velocity, b.angular_velocity,
+                joints.point, rows.lam, LIMIT)))
     return change
 
 

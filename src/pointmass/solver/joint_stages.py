@@ -195,10 +195,11 @@ def warm_start(ja, jb, ra, rb, axis, row, inv_mass, inv_i, vel, ang, point, turn
 
 @njit(cache=True, nogil=True)
 def solve_pass(ja, jb, ra, rb, kmat, bias, axis, mass, target, row, inv_mass, inv_i, vel, ang,
-               point, lam, mode, mass_scale, impulse_scale):
+               point, lam, mode, mass_scale, impulse_scale, through):
     """One Gauss–Seidel pass over the joints: angular rows, then the point block (the point
     last, so it is the row most exactly met when the passes stop; not for a ``mode`` DIRECT
-    joint, whose point the tree solve takes). A row held by a position bias is soft with
+    joint, whose point the tree solve takes, nor an angular row solved ``through`` (J, 3) the
+    tree, ``joint_loops.row_solve``). A row held by a position bias is soft with
     ``mass_scale`` and ``impulse_scale`` (Box2D's ``b2Softness``; 1 and 0: rigid); an open
     limit's speculative row never is. Returns the largest change of a row's velocity in the
     pass [m/s or rad/s]."""
@@ -209,7 +210,7 @@ def solve_pass(ja, jb, ra, rb, kmat, bias, axis, mass, target, row, inv_mass, in
         a = ja[j]
         b = jb[j]
         for s in range(3):
-            if row[j, s] == OFF:
+            if row[j, s] == OFF or through[j, s]:
                 continue
             ux, uy, uz = axis[j, s, 0], axis[j, s, 1], axis[j, s, 2]
             rel = 0.0
