@@ -238,19 +238,26 @@ def spin_reach(ang, shape, size, dt):
 
 @njit(cache=True, nogil=True)
 def _collide_all(pos, quat, vel, ang, shape, size, inv_mass, friction, restitution, margin, dt,
-                 plane, active, exclude):
+                 plane, active, exclude, out_a, out_b, out_n, out_ra, out_rb, out_d, out_mu,
+                 out_e, out_key):
     """``generate`` in one compiled call (a tiny world's collision was ~12 numpy calls and 4
     kernel calls a step): the broadphase (``find_pairs``), the pairs with an awake body
-    (``active``) that are not excluded (``exclude``: sorted keys lo·N + hi), ``spin_reach``,
-    the pairs' and the awake bodies' planes' narrow phase. ``plane`` (P, 7): each plane's
-    normal, offset, μ, e (−1: the body's) and serial. Returns the rows a, b, normal, r_a,
-    r_b, depth, μ, e, key, cut to their count."""
+    (``active``; empty: all) that are not excluded (``exclude``: sorted keys lo·N + hi),
+    ``spin_reach``, the pairs' and the awake bodies' planes' narrow phase. ``plane`` (P, 7):
+    each plane's normal, offset, μ, e (−1: the body's) and serial. Writes the rows a, b,
+    normal, r_a, r_b, depth, μ, e, key into the ``out_*`` buffers (``BodyContacts.room``)
+    and returns their count; or, when the buffers have fewer rows than the pairs could make,
+    −that many, writing nothing (the caller grows them and calls again). Written into the
+    caller's buffers, not returned: numba boxes each array it returns to Python (~2.5 µs
+    apiece, a dtype unpickled each time), and the nine returned arrays were ~15 % of a tiny
+    world's step."""
     n = pos.shape[0]
+    every = active.shape[0] == 0  # no mask: every body is active
     first, second, reach = find_pairs(pos, quat, vel, ang, shape, size, inv_mass, margin, dt)
     keep = 0
     for k in range(first.shape[0]):
         i, j = first[k], second[k]
-        if not (active[i] or active[j]):
+        if not (every or active[i] or active[j]):
             continue
         if exclude.shape[0]:
             key = i * n + j
@@ -263,20 +270,13 @@ def _collide_all(pos, quat, vel, ang, shape, size, inv_mass, friction, restituti
     second = second[:keep]
     on_planes = np.empty(n)  # the plane kernel skips w = 0: sleeping bodies
     for i in range(n):
-        on_planes[i] = inv_mass[i] if active[i] else 0.0
+        on_planes[i] = inv_mass[i] if every or active[i] else 0.0
     turn = spin_reach(ang, shape, size, dt)
     pairs = keep
     n_planes = plane.shape[0]
     rows = MAX_POINTS * (pairs + n * n_planes)
-    out_a = np.empty(rows, np.int64)
-    out_b = np.empty(rows, np.int64)
-    out_n = np.empty((rows, 3))
-    out_ra = np.empty((rows, 3))
-    out_rb = np.empty((rows, 3))
-    out_d = np.empty(rows)
-    out_mu = np.empty(rows)
-    out_e = np.empty(rows)
-    out_key = np.empty(rows, np.int64)
+    if rows > out_a.shape[0]:
+        return -rows
     count = pair_contacts(pos, quat, vel, turn, shape, size, inv_mass, friction, restitution,
                           first, second, reach, margin, dt, out_a, out_b, out_n, out_ra, out_rb,
                           out_d, out_mu, out_e, out_key)
@@ -296,17 +296,25 @@ def _collide_all(pos, quat, vel, ang, shape, size, inv_mass, friction, restituti
                                margin, plane_n, plane_d, plane_mu, plane_e, serial, count,
                                out_a, out_b, out_n, out_ra, out_rb, out_d, out_mu, out_e,
                                out_key)
-    return (out_a[:count], out_b[:count], out_n[:count], out_ra[:count], out_rb[:count],
-            out_d[:count], out_mu[:count], out_e[:count], out_key[:count])
+    return count
+
+
+#: ``_collide_all``'s "no mask" and "no pair left out", shared (empty: nothing can be written
+#: into them), so a step allocates neither.
+_ALL_ACTIVE = np.zeros(0, np.bool_)
+_NONE_EXCLUDED = np.zeros(0, np.int64)
 
 
 def plane_table(planes) -> np.ndarray:
     """(P, 7) float64: each plane's normal, offset, μ and e for bodies (−1: a material the
     plane leaves to the body, not set; see pointmass.collide) and its serial."""
-    return np.array([(*p.normal, p.offset,
-                      -1.0 if p.body_friction is None else p.body_friction,
-                      -1.0 if p.body_restitution is None else p.body_restitution,
-                      p.serial) for p in planes], dtype=np.float64).reshape(len(planes), 7)
+    table = np.empty((len(planes), 7))  # row by row: np.array of a list of tuples of numpy
+    for i, p in enumerate(planes):       # scalars took twice as long, every step
+        n = p.normal
+        friction, restitution = p.body_friction, p.body_restitution
+        table[i] = (n[0], n[1], n[2], p.offset, -1.0 if friction is None else friction,
+                    -1.0 if restitution is None else restitution, p.serial)
+    return table
 
 
 def generate(bodies, planes, dt: float, contacts: BodyContacts,
@@ -323,9 +331,17 @@ def generate(bodies, planes, dt: float, contacts: BodyContacts,
         raise ValueError(f"at most {BODY_KEY_LIMIT} bodies collide (contact keys have 20 bits "
                          f"for a body), got {b.count}")
     if active is None:
-        active = np.ones(b.count, np.bool_)
+        active = _ALL_ACTIVE
     if exclude is None:
-        exclude = np.empty(0, np.int64)
-    contacts.take(*_collide_all(b.position, b.orientation, b.velocity, b.angular_velocity,
-                                b.shape, b.size, b.inv_mass, b.friction, b.restitution,
-                                float(margin), float(dt), plane_table(planes), active, exclude))
+        exclude = _NONE_EXCLUDED
+    table = plane_table(planes)
+    rows = 0
+    while True:
+        room = contacts.room(rows)
+        count = _collide_all(b.position, b.orientation, b.velocity, b.angular_velocity, b.shape,
+                             b.size, b.inv_mass, b.friction, b.restitution, float(margin),
+                             float(dt), table, active, exclude, *room)
+        if count >= 0:
+            break
+        rows = -count
+    contacts.take_room(count)

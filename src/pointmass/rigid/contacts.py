@@ -40,6 +40,7 @@ class BodyContacts:
 
     def __init__(self, capacity: int = 0) -> None:
         self.count = 0
+        self._room: tuple | None = None  # ``room``'s buffers
         self.resize(capacity)
 
     def resize(self, capacity: int) -> None:
@@ -58,13 +59,31 @@ class BodyContacts:
         self.key = np.empty(capacity, np.int64)
         self.impulse = np.zeros(capacity)  # calloc: no pass over the room
 
-    def take(self, a, b, normal, r_a, r_b, depth, friction, restitution, key) -> None:
-        """Hold these rows (arrays a kernel made, of one length) and no others; the impulses
-        are 0 until the solve."""
-        self.count = a.shape[0]
-        self.a, self.b, self.normal, self.r_a, self.r_b = a, b, normal, r_a, r_b
-        self.depth, self.friction, self.restitution, self.key = depth, friction, restitution, key
-        self.impulse = np.zeros(self.count)
+    def room(self, rows: int) -> tuple:
+        """Buffers (a, b, normal, r_a, r_b, depth, friction, restitution, key) with at least
+        ``rows`` rows, for a kernel to write a step's rows into (``take_room`` then holds
+        them). They are kept from step to step, grown to twice what is asked when too small:
+        a step allocates nothing for its rows. The rows of a step are views of them, so they
+        hold until the next step's collision writes the buffers again."""
+        held = self._room
+        if held is None or held[0].shape[0] < rows:
+            size = max(2 * rows, 16)
+            held = (np.empty(size, np.int64), np.empty(size, np.int64), np.empty((size, 3)),
+                    np.empty((size, 3)), np.empty((size, 3)), np.empty(size), np.empty(size),
+                    np.empty(size), np.empty(size, np.int64))
+            self._room = held
+        return held
+
+    def take_room(self, count: int) -> None:
+        """Hold the first ``count`` rows that a kernel wrote into ``room``'s buffers, and no
+        others; the impulses are 0 until the solve."""
+        a, b, normal, r_a, r_b, depth, friction, restitution, key = self._room
+        self.count = count
+        self.a, self.b, self.normal, self.r_a, self.r_b = (a[:count], b[:count], normal[:count],
+                                                           r_a[:count], r_b[:count])
+        self.depth, self.friction = depth[:count], friction[:count]
+        self.restitution, self.key = restitution[:count], key[:count]
+        self.impulse = np.zeros(count)
 
     def trim(self, count: int) -> None:
         """Keep the first ``count`` rows as views (after a kernel wrote them)."""

@@ -556,8 +556,11 @@ def sweep_back(bodies, planes, exclude, x_start: np.ndarray, q_start: np.ndarray
     """``clamp`` on a ``Bodies`` and the world's ``Plane``s; returns the bodies moved."""
     b = bodies
     n = len(planes)
-    plane_n = np.array([p.normal for p in planes], dtype=np.float64).reshape(n, 3)
-    plane_d = np.array([p.offset for p in planes], dtype=np.float64)
+    plane_n = np.empty((n, 3))
+    plane_d = np.empty(n)
+    for i, p in enumerate(planes):  # (np.array of lists of arrays was 2x slower, every step)
+        plane_n[i] = p.normal
+        plane_d[i] = p.offset
     if exclude is None:
         exclude = np.zeros(0, np.int64)
     return int(clamp(b.position, b.orientation, b.velocity, b.angular_velocity, b.inv_mass,
