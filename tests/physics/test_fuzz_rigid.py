@@ -217,10 +217,11 @@ def test_soft_step_refuses_a_velocity_it_cannot_square_in_the_step():
 #: 9 end a step deep (2 of them other seeds), the fastest 2.2e3 m/s (seed 53; 3.2e3 before).
 #: With the islands' limit on every island that rows link (contacts too), the continuous
 #: stage parting deep moving pairs and the tree's angular rows rigid through the tree
-#: (``solver/joint_soft.py``, "Angular rows"): MEASURE. The deep count is a ratchet; issue
-#: 30's target is ≤ 1 % of scenes.
+#: (``solver/joint_soft.py``, "Angular rows"): none gains (seed 88's 8.2e-9, in an island of
+#: contacts alone, went with the contacts' cap), 7 end a step deep (24, 33, 53, 163, 180, 181,
+#: 197). The deep count is a ratchet; issue 30's target is ≤ 1 % of scenes.
 SOFT_JOINTED_GAINS = (0, 0)
-SOFT_JOINTED_DEEP = 8
+SOFT_JOINTED_DEEP = 7
 
 
 @pytest.mark.slow
