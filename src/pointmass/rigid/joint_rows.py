@@ -59,6 +59,17 @@ def _limit_row(out, s, angle, low, high, ux, uy, uz):
 
 
 @njit(cache=True, nogil=True)
+def relative_spin(ang, a, b, ux, uy, uz):
+    """An angular row's rate: (ω_b − ω_a)·u about its unit axis u (ω_b = 0 for the world,
+    b < 0)."""
+    rel = 0.0
+    for k in range(3):
+        wb = ang[b, k] if b >= 0 else 0.0
+        rel += (wb - ang[a, k]) * (ux if k == 0 else uy if k == 1 else uz)
+    return rel
+
+
+@njit(cache=True, nogil=True)
 def angular_rows(quat, a, b, fa, fb, kind, lim, j, out):
     """The angular rows of joint j in the current pose into ``out`` (3, 5): per slot the world
     axis u (3), the position value C [rad] and the row type (OFF, EQUAL, LIMIT)."""

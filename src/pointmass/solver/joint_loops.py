@@ -27,6 +27,7 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
+from ..rigid.joint_rows import relative_spin
 from .joint_direct import _coupling, _invert, apply, rate, substitute
 
 
@@ -192,10 +193,7 @@ def row_solve(nodes, parent, count, n, where, ja, jb, axis, row, mass, target, t
             if not through[j, s]:
                 continue
             ux, uy, uz = axis[j, s, 0], axis[j, s, 1], axis[j, s, 2]
-            rel = 0.0
-            for k in range(3):
-                wb = ang[b, k] if b >= 0 else 0.0
-                rel += (wb - ang[a, k]) * (ux if k == 0 else uy if k == 1 else uz)
+            rel = relative_spin(ang, a, b, ux, uy, uz)
             total = lam[j, s] + (target[j, s] - rel) * mass[j, s]
             if row[j, s] == limit and total < 0.0:
                 total = 0.0

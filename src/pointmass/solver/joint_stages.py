@@ -40,7 +40,7 @@ import math
 import numpy as np
 from numba import njit
 
-from ..rigid.joint_rows import LIMIT, OFF, angular_rows
+from ..rigid.joint_rows import LIMIT, OFF, angular_rows, relative_spin
 from ..rigid.scalar import qrot, solve3
 from .joint_tree import DIRECT as DIRECT_JOINT
 from .joint_tree import OFF as OFF_JOINT
@@ -213,10 +213,7 @@ def solve_pass(ja, jb, ra, rb, kmat, bias, axis, mass, target, row, inv_mass, in
             if row[j, s] == OFF or through[j, s]:
                 continue
             ux, uy, uz = axis[j, s, 0], axis[j, s, 1], axis[j, s, 2]
-            rel = 0.0
-            for k in range(3):
-                wb = ang[b, k] if b >= 0 else 0.0
-                rel += (wb - ang[a, k]) * (ux if k == 0 else uy if k == 1 else uz)
+            rel = relative_spin(ang, a, b, ux, uy, uz)
             ms, keep = mass_scale, impulse_scale
             if row[j, s] == LIMIT and target[j, s] <= 0.0:  # open: speculative, not soft
                 ms, keep = 1.0, 0.0
