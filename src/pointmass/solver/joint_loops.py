@@ -9,11 +9,11 @@ Why. Swept against the tree with only its own bodies' mass (Gauss–Seidel), the
 of a 50-plank rope bridge never converged in 30 passes: its gap stayed at 4.4 mm after 10 s
 and the bridge never came to rest.
 
-In the soft step (``joint_soft``) a loop joint is Box2D's soft row, but with the mass the
-tree shows it, S⁻¹, where Box2D's row has its own two bodies' (K⁻¹): a soft row's spring
-holds a load F with a gap K·F/ω², so the bridge's second anchor, pulled by the weight of 50
-planks but sprung with one plank's mass, opened 2.7 mm (at 60 Hz); sprung with the tree's
-mass along the rope (S 0.013 against K 0.5 1/kg) it holds to 0.09 mm.
+In the soft step (``joint_soft``) a loop joint is the same rigid row, aimed at closing its gap
+within the substep (Ċ = −C/h) rather than at the end pose: as Box2D's soft row, sprung with
+its own two bodies' mass (K⁻¹), the bridge's second anchor, pulled by the weight of 50 planks
+but sprung with one plank's mass, opened 2.7 mm (at 60 Hz); sprung with the tree's mass S⁻¹
+(S 0.013 against K 0.5 1/kg) 0.085 mm; rigid, 3.5e-7 m (``joint_soft``, "Loops").
 
 The angular rows of the tree's joints (a hinge's locks, the limits) are solved the same way in
 the soft step (``row_masses``, ``row_solve``), as rigid rows: one row's mass through the tree
@@ -85,40 +85,29 @@ def masses(loops, nodes, parent, count, n, where, ja, jb, ra, rb, dinv, low, sin
 
 @njit(cache=True, nogil=True)
 def solve(loops, nodes, parent, count, n, where, ja, jb, ra, rb, bias, dinv, low, sinv, vel,
-          ang, point, mass_scale=1.0, impulse_scale=0.0):
-    """One pass over the loop joints (module docstring); returns the largest |target − Ċ| met
-    [m/s]. With ``mass_scale`` and ``impulse_scale`` other than 1 and 0 each is Box2D's soft
-    row (``joint_soft``) with the tree's mass S⁻¹ in place of its own bodies': the impulse is
-    mass_scale·S⁻¹·(target − Ċ) − impulse_scale·(what it has accumulated, ``point``), and
-    the largest change of a loop's Ċ is returned."""
+          ang, point):
+    """One pass over the loop joints (module docstring), each a rigid row: the impulse
+    S⁻¹·(target − Ċ) that meets its target ``bias`` with the tree's mass, applied as a load
+    the tree's joints take up (their impulses, and its own, go to ``point``). Returns the
+    largest |target − Ċ| met [m/s]."""
     z = np.zeros((count, 6))
     y = np.zeros((count, 6))
     largest = 0.0
-    soft = mass_scale != 1.0 or impulse_scale != 0.0
     for k in range(loops.shape[0]):
         j = loops[k]
         cx, cy, cz = rate(ja, jb, ra, rb, vel, ang, j)
         ex, ey, ez = bias[j, 0] - cx, bias[j, 1] - cy, bias[j, 2] - cz
-        if not soft:
-            largest = max(largest, np.sqrt(ex * ex + ey * ey + ez * ez))
+        largest = max(largest, np.sqrt(ex * ex + ey * ey + ez * ez))
         m = sinv[k]
         lx = m[0, 0] * ex + m[0, 1] * ey + m[0, 2] * ez
         ly = m[1, 0] * ex + m[1, 1] * ey + m[1, 2] * ez
         lz = m[2, 0] * ex + m[2, 1] * ey + m[2, 2] * ez
-        if soft:
-            lx = mass_scale * lx - impulse_scale * point[j, 0]
-            ly = mass_scale * ly - impulse_scale * point[j, 1]
-            lz = mass_scale * lz - impulse_scale * point[j, 2]
         _load(z, where, ja, jb, ra, rb, j, lx, ly, lz)
         substitute(nodes, parent, count, n, dinv, low, z, y)
         apply(nodes, count, n, y, vel, ang, point)
         point[j, 0] += lx
         point[j, 1] += ly
         point[j, 2] += lz
-        if soft:
-            dx, dy, dz = rate(ja, jb, ra, rb, vel, ang, j)
-            dx, dy, dz = dx - cx, dy - cy, dz - cz
-            largest = max(largest, np.sqrt(dx * dx + dy * dy + dz * dz))
     return largest
 
 

@@ -67,7 +67,7 @@ def end_targets(ja, jb, la, lb, pos, quat, vel, ang, inv_inertia, dt, mode, ra, 
     what the step may leave of the gap the joint has now, ``keep`` (J, 3); ``xend`` (N, 3),
     ``qend`` (N, 4) are scratch), no faster than ``speed`` [m/s] (the soft step's push-out
     cap; ``inf``: none); only joints whose mode is at most ``top`` (LOOP: all of them;
-    DIRECT: the soft step's loops keep their bias, ``joint_soft``). Returns the largest
+    DIRECT: the soft step's loops keep their targets, ``joint_soft``). Returns the largest
     predicted excess over dt [m/s]."""
     largest = 0.0
     for j in range(ja.shape[0]):

@@ -70,10 +70,10 @@ class JointRows:
     #: Fastest relative velocity [m/s] a point block's aimed target may ask for (the soft
     #: step's push-out cap, ``joint_soft``); inf: no cap (the default stage).
     speed: float = math.inf
-    #: Whether the LOOP joints' point blocks are soft rows through the tree (``joint_soft``:
-    #: ``mass_scale`` and ``impulse_scale`` with the tree's mass, targets the position bias)
-    #: rather than rigid rows aimed at the end pose (the default stage).
-    soft_loops: bool = False
+    #: Whether the LOOP joints' point blocks aim at the end pose (``joint_predict``) as the
+    #: tree's do (the default stage), or keep the targets ``bias`` holds (``joint_soft``:
+    #: Ċ = −C/h). Rigid rows through the tree either way (``joint_loops.solve``).
+    aim_loops: bool = True
     #: Per angular row (J, 3): whether it is solved through the tree as a rigid row
     #: (``joint_loops.row_solve``; ``mass`` then the tree's) rather than by Gauss–Seidel on
     #: its own two bodies (``joint_soft``: the soft step's rows of the tree's joints).
@@ -176,7 +176,7 @@ def velocity_pass(bodies, joints, rows: JointRows) -> float:
             j.a, j.b, j.local_a, j.local_b, b.position, b.orientation, b.velocity,
             b.angular_velocity, b.inv_inertia, rows.dt, rows.mode, rows.ra, rows.rb, rows.keep,
             rows.bias, np.empty((n, 3)), np.empty((n, 4)), rows.speed,
-            jt.DIRECT if rows.soft_loops else jt.LOOP))
+            jt.LOOP if rows.aim_loops else jt.DIRECT))
     change = max(change, float(js.solve_pass(
         j.a, j.b, rows.ra, rows.rb, rows.kmat, rows.bias, rows.axis, rows.mass, rows.target,
         rows.row, b.inv_mass, b.inv_inertia_world, b.velocity, b.angular_velocity,
@@ -188,10 +188,9 @@ def velocity_pass(bodies, joints, rows: JointRows) -> float:
                                             rows.rb, rows.bias, dinv, low, b.velocity,
                                             b.angular_velocity, joints.point)))
         if loops.shape[0]:
-            scales = (rows.mass_scale, rows.impulse_scale) if rows.soft_loops else (1.0, 0.0)
             change = max(change, float(jl.solve(
                 loops, nodes, parent, count, n, where, j.a, j.b, rows.ra, rows.rb, rows.bias,
-                dinv, low, sinv, b.velocity, b.angular_velocity, joints.point, *scales)))
+                dinv, low, sinv, b.velocity, b.angular_velocity, joints.point)))
         if rows.through.any():
             change = max(change, float(jl.row_solve(
                 nodes, parent, count, n, where, j.a, j.b, rows.axis, rows.row, rows.mass,
