@@ -97,14 +97,15 @@ def wake_particles(world: World, marked: np.ndarray) -> np.ndarray:
     return woken
 
 
-def find_body_rows(world: World, h: float, dt: float, acc: np.ndarray):
+def find_body_rows(world: World, h: float, dt: float, acc: np.ndarray, planes=None):
     """This substep's body rows, then the particle–body rows; returns the packed view (or
     None) and ``acc`` extended to it. A sleeping island that a row wakes gets its first
     kick (of h) and the rows are made again, until no row touches a sleeping body that
-    should wake."""
+    should wake. ``planes``: the world's ``Plane``s, when the caller has them already."""
     b = world.bodies
     p = world.particles
-    planes = [g for g in world.contact_generators if isinstance(g, Plane)]
+    if planes is None:
+        planes = [g for g in world.contact_generators if isinstance(g, Plane)]
     links = body_links(world) if world._sleep else None
     exclude = world.joints.pair_keys(b.count) if world.joints else None
     while True:

@@ -31,8 +31,6 @@ from .solver.body_late import project_late
 from .stability import SpringCheck, jump_check, needs_jump_check
 from .step_stats import StepStats
 
-_NO_SOLVE = SolveStats()  # the particle stages' stats with no particles (frozen)
-
 
 class World:
     """Particles and everything acting on them.
@@ -388,10 +386,10 @@ class World:
         iterations = velocity_passes = position_passes = 0
         try:
             for _ in range(self._substeps):
-                solved = self._substep(h)
-                iterations += solved.resolutions
-                velocity_passes += solved.velocity_passes
-                position_passes += solved.position_passes
+                resolutions, velocity, position = self._substep(h)
+                iterations += resolutions
+                velocity_passes += velocity
+                position_passes += position
         except FloatingPointError:
             if saved is not None:  # a later substep blew up: undo the earlier ones
                 self.particles.restore(saved[0])
@@ -410,19 +408,18 @@ class World:
         self._steps += 1
         pen = self.contacts.penetration
         b = self.bodies
-        awake = int(np.count_nonzero(b.awake & (b.inv_mass > 0))) if b.count else 0
+        awake = b.awake_movable() if b.count else 0
         deepest = float(pen.max()) if pen.size and pen.max() > 0 else 0.0
         rows = self._body_rows
         if rows is not None:
             deepest = max(deepest, rows.deepest)
         for probe in self.probes:
             probe.record(self)
-        stats = StepStats(contacts=self.contacts.count, iterations=iterations,
-                          max_penetration=deepest, mode=self.solver.mode,
-                          velocity_passes=velocity_passes, position_passes=position_passes,
-                          body_contacts=self.body_contacts.count, awake_bodies=awake)
-        object.__setattr__(stats, "_energy", partial(self._energy_after, self._steps))
-        return stats
+        return StepStats.made(contacts=self.contacts.count, iterations=iterations,
+                              max_penetration=deepest, mode=self.solver.mode,
+                              velocity_passes=velocity_passes, position_passes=position_passes,
+                              body_contacts=self.body_contacts.count, awake_bodies=awake,
+                              _energy=partial(self._energy_after, self._steps))
 
     def _energy_after(self, steps: int) -> float:
         """The kinetic energy for ``StepStats`` of step number ``steps``: summed now, when it
@@ -446,7 +443,9 @@ class World:
                 "m/s or rad/s)")
         return energy
 
-    def _substep(self, dt: float) -> SolveStats:
+    def _substep(self, dt: float) -> tuple[int, int, int]:
+        """One substep of the particle and body stages; returns their (resolutions, velocity
+        passes, position passes), for ``StepStats``."""
         p = self.particles
 
         # Let every force generator add its forces to the accumulators (which hold whatever
@@ -464,19 +463,18 @@ class World:
 
         self.contacts.clear()
         self.contacts.dt = dt
+        resolutions = velocity = position = 0
         if p.count:
             solved = self._substep_particles(g, k1, k2, dt)
+            resolutions = solved.resolutions
+            velocity, position = solved.velocity_passes, solved.position_passes
         else:  # what the particle stages do with no particles: no rows, nothing kept
             self.impulses.clear()
-            solved = _NO_SOLVE
         if self.bodies.count:
             rows = self._substep_bodies(dt)
-            solved = SolveStats(
-                contacts=solved.contacts, impact_passes=solved.impact_passes,
-                velocity_passes=solved.velocity_passes + rows.velocity_passes,
-                position_passes=solved.position_passes + rows.position_passes,
-                resolutions=solved.resolutions, cold_restart=solved.cold_restart)
-        return solved
+            velocity += rows.velocity_passes
+            position += rows.position_passes
+        return resolutions, velocity, position
 
     def _substep_particles(self, g: np.ndarray, k1: float, k2: float,
                            dt: float) -> SolveStats:
@@ -568,10 +566,12 @@ class World:
         x_start, q_start = b.position.copy(), b.orientation.copy()  # the sweep's start
         kept, acc = self._apply_body_forces(h)  # for the first substep (and found again)
         p = self.particles
-        integrated = p.awake.copy()  # the particles the integration moved (and kicked by dt)
+        # the particles the integration moved (and kicked by dt); none: no packed view
+        integrated = p.awake.copy() if p.count else None
+        planes = [g for g in self.contact_generators if isinstance(g, Plane)]  # found once
         try:  # the first kicks (here, and of woken bodies); ``body_soft`` gives the others
             self._kick(h, b.awake)
-            packed, acc = wake.find_body_rows(self, h, dt, acc)
+            packed, acc = wake.find_body_rows(self, h, dt, acc, planes)
             self._packed = packed  # the islands read its particles (``_fall_asleep``)
             view = b
             if packed is not None:
@@ -591,10 +591,11 @@ class World:
             b.velocity[:] = packed.velocity[:b.count]
             p.velocity[packed.selected] = packed.velocity[b.count:]
         # what the step's one collision pass did not foresee: a fast body is put back where
-        # it first meets a static body or a plane (``solver/body_continuous.py``)
-        planes = [g for g in self.contact_generators if isinstance(g, Plane)]
-        exclude = self.joints.pair_keys(b.count) if self.joints else None
-        sweep_back(b, planes, exclude, x_start, q_start, dt)
+        # it first meets a static body or a plane (``solver/body_continuous.py``); only an
+        # awake body can be fast
+        if b.awake.any():
+            exclude = self.joints.pair_keys(b.count) if self.joints else None
+            sweep_back(b, planes, exclude, x_start, q_start, dt)
         self._body_rows = rows
         return rows
 

@@ -576,7 +576,8 @@ def contact_step(nb, substeps, h, gravity, soft, static, threshold, pos, quat, v
     ``shape`` (``nb``,) the bodies' shapes: which points' anchors do not turn (``_round``).
 
     Returns (passes, deepest overlap, error, body): error 1 is a spin that is not finite after
-    a kick, 2 a body that is not finite after a drift (``body`` names it), 0 none."""
+    a kick, 2 a body that is not finite after a drift, 3 a row whose velocity the step left
+    not finite or too large to square (``_refuse_blow_up``; ``body`` names it), 0 none."""
     m = ca.shape[0]
     round_a = np.empty(m, np.bool_)
     round_b = np.empty(m, np.bool_)
@@ -705,6 +706,9 @@ def contact_step(nb, substeps, h, gravity, soft, static, threshold, pos, quat, v
             total[c] += impulse[c] - held[c]
         impulse[:] = held
         bm.split_friction(start, n, t1, t2, jt1, jt2, jtw, kept)
+    bad = _first_blown(vel, ang)  # ``_refuse_blow_up``'s check, without a call of its own
+    if bad >= 0:
+        return passes, deepest, 3, bad
     return passes, deepest, 0, -1
 
 
@@ -742,6 +746,8 @@ def _contact_step(v, b, c: BodyContacts, acceleration, history: ImpulseHistory, 
     out.deepest = float(deepest)
     if c.count:
         history.keep(c.key, impulse, kept)
+    if error == 3:
+        raise _blow_up_error(v, b.count, int(bad))
     return out
 
 
@@ -775,11 +781,14 @@ def step(view, bodies, contacts: BodyContacts, acceleration: np.ndarray,
     soft, static = _softness_rows(h)
     out = SoftRows(c)
     jointed = joints is not None and len(joints) > 0
-    if not jointed and compiled and forces is None:  # the whole step in one compiled call
-        out = _contact_step(v, b, c, acceleration, history, h, threshold, gravity, substeps,
-                            soft, static, out)
-        _refuse_blow_up(v, b.count)
-        return out
+    if not jointed and compiled and forces is None:
+        if not c.count and not v.awake.any():  # all asleep: no row, nothing moves
+            history.clear()
+            _refuse_blow_up(v, b.count)
+            return out
+        # the whole step in one compiled call (it checks what it leaves: ``_refuse_blow_up``)
+        return _contact_step(v, b, c, acceleration, history, h, threshold, gravity, substeps,
+                             soft, static, out)
     r = _Rows(c)
     awake = v.awake
     if c.count:
@@ -927,13 +936,17 @@ def _refuse_blow_up(v, nb: int) -> None:
     jointed scene, seed 196, left 1e158 rad/s in its first step that only the next step's
     kick caught)."""
     bad = int(_first_blown(v.velocity, v.angular_velocity))
-    if bad < 0:
-        return
+    if bad >= 0:
+        raise _blow_up_error(v, nb, bad)
+
+
+def _blow_up_error(v, nb: int, bad: int) -> FloatingPointError:
+    """``_refuse_blow_up``'s error for row ``bad`` of the view."""
     if bad < nb:
         what = f"body {bad}"
     else:  # a particle touching a body: the packed view's row of it
         what = f"particle {int(v.selected[bad - nb])}"
-    raise FloatingPointError(
+    return FloatingPointError(
         f"{what} was left with a velocity that is not finite or too large to square by the "
         f"soft step (velocity {v.velocity[bad].tolist()} m/s, angular velocity "
         f"{v.angular_velocity[bad].tolist()} rad/s): a blow-up")
