@@ -594,7 +594,8 @@ class World:
         # it first meets a static body or a plane (``solver/body_continuous.py``)
         planes = [g for g in self.contact_generators if isinstance(g, Plane)]
         exclude = self.joints.pair_keys(b.count) if self.joints else None
-        sweep_back(b, planes, exclude, x_start, q_start, dt)
+        anchored = [j.a for j in self.joints.items if j.b < 0] if self.joints else None
+        sweep_back(b, planes, exclude, x_start, q_start, dt, anchored)
         self._body_rows = rows
         return rows
 
