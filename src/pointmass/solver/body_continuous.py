@@ -312,6 +312,26 @@ def _impact(i, j, limit, x_start, q_start, sweep, shape, size, plane_n, plane_d,
 
 
 @njit(cache=True, nogil=True)
+def _impact_still(i, j, x_start, q_start, sweep, shape, size, plane_n, plane_d, axes_i, axes_j,
+                  pos, quat):
+    """``_impact`` of body i's sweep against body j held where the step left it (its row of
+    the sweep and its start pose stood in for that while it runs, then put back)."""
+    row = sweep[j].copy()
+    x0 = x_start[j].copy()
+    q0 = q_start[j].copy()
+    sweep[j, 0:7] = 0.0
+    sweep[j, 9] = 0.0
+    x_start[j] = pos[j]
+    q_start[j] = quat[j]
+    t = _impact(i, j, 1.0, x_start, q_start, sweep, shape, size, plane_n, plane_d, axes_i,
+                axes_j)
+    sweep[j] = row
+    x_start[j] = x0
+    q_start[j] = q0
+    return t
+
+
+@njit(cache=True, nogil=True)
 def _pair_deep(i, j, pos, quat, shape, size, x_start, q_start, axes_i, axes_j):
     """Whether the step left bodies i and j more than ``SLOP`` inside each other and more than
     ``SLOP`` deeper than they started: what their rows did not hold (a bounce the rows caught
@@ -530,6 +550,20 @@ def clamp(pos, quat, vel, ang, inv_mass, inv_inertia, inv_i, shape, size, awake,
                         pos[j, u] += (1.0 - share) * back * rel[u]
                     count += 2
                     continue
+            if (members[ri] == 1) != (members[rj] == 1):
+                # a free body and a joint group: the free body alone goes back along its
+                # sweep, to where it meets the group's body where the step left it (the group
+                # moved back along its bodies' sweeps opened a ball joint on a 5 m arm by
+                # 2.5 cm, the chord of its turn: seed 1121)
+                f, o = (i, j) if members[ri] == 1 else (j, i)
+                t = _impact_still(f, o, x_start, q_start, sweep, shape, size, plane_n, plane_d,
+                                  axes_i, axes_j, pos, quat)
+                if t < best[f]:
+                    best[f] = t
+                    _move_back(f, t, pos, quat, ang, inv_inertia, inv_i, x_start, q_start,
+                               sweep, axes_i, axes_j)
+                    count += 1
+                continue
             t = _impact(i, j, 1.0, x_start, q_start, sweep, shape, size, plane_n, plane_d,
                         axes_i, axes_j)
             for k in range(nb):  # both units, each body along its sweep to the impact
