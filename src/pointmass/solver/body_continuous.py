@@ -36,6 +36,9 @@ What (after the substeps and the restitution):
    starts the step within 2·``SLOP`` (touching: sliding, resting, pushed), ``SLOP`` less than
    its separation then: a body that rests or slides on the ground is left alone, one whose
    corner the step would drive deeper than ``SLOP`` past where it started is stopped first.
+   A body that starts the step more than ``SLOP`` inside a static body or a plane ends it no
+   deeper: at its end pose if that is no deeper, else where it began (what the rows did not
+   push out; a target ``SLOP`` deeper each step let it creep in, ``SLOP`` a step).
 5. The body is put at the earliest time of impact's pose; its velocities are kept (Box2D's
    too; the spin in the body's frame): it arrives with them, and the next step's collision
    finds the contact within its travel and its row stops it.
@@ -46,7 +49,11 @@ What (after the substeps and the restitution):
    about their centre of mass, along their relative velocity, to where they are ``SLOP``
    apart (``_rewind``: momentum, angular momentum and energy kept to round-off); else (the
    rows turned them, or a spin took them in, which no translation undoes) both go back along
-   their sweeps to the pair's time of impact, as against a static body.
+   their sweeps to the pair's time of impact, as against a static body. A body of a joint
+   group is never moved alone (that opens its joints): a free body against a group goes back
+   alone along its sweep to where it meets the group's body where the step left it; two
+   groups (or a body a world point holds) go back whole, each body along its sweep to the
+   pair's time of impact.
 
 Momentum and energy: the stage moves poses only; a body turned back keeps its spin in its
 own frame (as the default stage's projection, ``body_energy.keep_spin``), so its kinetic
@@ -76,13 +83,17 @@ slow fuzz's seeds 1000–1999 at 120 steps end a step deep in 38 of 1000 scenes 
 both: 56), 6 of the 332 joint-free (14) and 32 of the 668 jointed (42); seeds 0–299, 300
 steps, joint-free: none of 91.
 
-Not covered: pairs with a jointed body (skipped above: moving one body of a joint group
-alone opens its joints). Of the first 19 jointed scenes of seeds 1000–1999 that end deep,
-7 are such a pair (a free body hitting a jointed one, e.g. seed 1121: a 25 g box at 48 m/s
-into a 10.5 kg jointed box); the other 12 are a light jointed body in a wall or the ground
-(mass ratios in the group of 370 to 7e5, most with the joint open 0.3–4.5 m): the joint's
-rows pull it in, and this stage, which lets a body end a step SLOP deeper than it began,
-lets it creep in a few mm a step (seed 1264: a 3 g plank hinged to an 805 kg box).
+Jointed scenes (stop 37): of the first 19 jointed scenes of seeds 1000–1999 that ended a
+step deep, 7 were a free body hitting a jointed one, which item 6 then skipped (seed 1121: a
+25 g box at 48 m/s into a 10.5 kg jointed box, 14.4 cm); the other 12 a light jointed body in a
+wall or the ground (mass ratios in the group of 370 to 7e5): the joint's tree, solved exactly,
+drags it in against contact rows that carry only its own mass, and item 4's target let it creep
+in SLOP a step (seed 1264: a 2.8 g plank hinged on a 4 m arm to an 805 kg box, 9.3 cm). With
+item 6 on joint groups and item 4's floor: seeds 1000–1199 at 120 steps, 5 → 0 scenes deep.
+Not covered: a slow body (not fast) dragged in (its rows, found with its travel, are what hold
+it); the cause itself, the contact rows of a tree's body solved with that body's mass alone
+while the tree is solved exactly (rows through the tree, as ``joint_loops`` solves a loop's,
+would carry the group's mass).
 """
 
 from __future__ import annotations
