@@ -569,12 +569,16 @@ def clamp(pos, quat, vel, ang, inv_mass, inv_inertia, inv_i, shape, size, awake,
                 f, o = (i, j) if members[ri] == 1 else (j, i)
                 t = _impact_still(f, o, x_start, q_start, sweep, shape, size, plane_n, plane_d,
                                   axes_i, axes_j, pos, quat)
-                if t < best[f]:
-                    best[f] = t
-                    _move_back(f, t, pos, quat, ang, inv_inertia, inv_i, x_start, q_start,
-                               sweep, axes_i, axes_j)
-                    count += 1
-                continue
+                pf, qf = _pose(f, t, x_start, q_start, sweep)
+                gap, _, _, _ = _pair_gap(shape[f], size[f], pf, qf, shape[o], size[o], pos[o],
+                                         quat[o], axes_i, axes_j)
+                if gap >= -SLOP:  # (else its whole sweep is in the group's body: below)
+                    if t < best[f]:
+                        best[f] = t
+                        _move_back(f, t, pos, quat, ang, inv_inertia, inv_i, x_start,
+                                   q_start, sweep, axes_i, axes_j)
+                        count += 1
+                    continue
             t = _impact(i, j, 1.0, x_start, q_start, sweep, shape, size, plane_n, plane_d,
                         axes_i, axes_j)
             for k in range(nb):  # both units, each body along its sweep to the impact
