@@ -89,7 +89,9 @@ step deep, 7 were a free body hitting a jointed one, which item 6 then skipped (
 wall or the ground (mass ratios in the group of 370 to 7e5): the joint's tree, solved exactly,
 drags it in against contact rows that carry only its own mass, and item 4's target let it creep
 in SLOP a step (seed 1264: a 2.8 g plank hinged on a 4 m arm to an 805 kg box, 9.3 cm). With
-item 6 on joint groups and item 4's floor: seeds 1000–1199 at 120 steps, 5 → 0 scenes deep.
+item 6 on joint groups and item 4's floor (120 steps): seeds 1000–1199, 5 → 0 scenes deep;
+1200–1399, 8 → 2 (1263 jointed, 1279 joint-free); 300 steps: seeds 0–199's 143 jointed,
+7 → 1 (163), none gains; the 91 joint-free of 0–299 none deep, as before.
 Not covered: a slow body (not fast) dragged in (its rows, found with its travel, are what hold
 it); the cause itself, the contact rows of a tree's body solved with that body's mass alone
 while the tree is solved exactly (rows through the tree, as ``joint_loops`` solves a loop's,
