@@ -595,7 +595,8 @@ class World:
         # awake body can be fast
         if b.awake.any():
             exclude = self.joints.pair_keys(b.count) if self.joints else None
-            sweep_back(b, planes, exclude, x_start, q_start, dt)
+            anchored = [j.a for j in self.joints.items if j.b < 0] if self.joints else None
+            sweep_back(b, planes, exclude, x_start, q_start, dt, anchored)
         self._body_rows = rows
         return rows
 

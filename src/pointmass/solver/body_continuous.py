@@ -36,6 +36,9 @@ What (after the substeps and the restitution):
    starts the step within 2·``SLOP`` (touching: sliding, resting, pushed), ``SLOP`` less than
    its separation then: a body that rests or slides on the ground is left alone, one whose
    corner the step would drive deeper than ``SLOP`` past where it started is stopped first.
+   A body that starts the step more than ``SLOP`` inside a static body or a plane ends it no
+   deeper: at its end pose if that is no deeper, else where it began (what the rows did not
+   push out; a target ``SLOP`` deeper each step let it creep in, ``SLOP`` a step).
 5. The body is put at the earliest time of impact's pose; its velocities are kept (Box2D's
    too; the spin in the body's frame): it arrives with them, and the next step's collision
    finds the contact within its travel and its row stops it.
@@ -46,7 +49,11 @@ What (after the substeps and the restitution):
    about their centre of mass, along their relative velocity, to where they are ``SLOP``
    apart (``_rewind``: momentum, angular momentum and energy kept to round-off); else (the
    rows turned them, or a spin took them in, which no translation undoes) both go back along
-   their sweeps to the pair's time of impact, as against a static body.
+   their sweeps to the pair's time of impact, as against a static body. A body of a joint
+   group is never moved alone (that opens its joints): a free body against a group goes back
+   alone along its sweep to where it meets the group's body where the step left it; two
+   groups (or a body a world point holds) go back whole, each body along its sweep to the
+   pair's time of impact.
 
 Momentum and energy: the stage moves poses only; a body turned back keeps its spin in its
 own frame (as the default stage's projection, ``body_energy.keep_spin``), so its kinetic
@@ -76,13 +83,19 @@ slow fuzz's seeds 1000–1999 at 120 steps end a step deep in 38 of 1000 scenes 
 both: 56), 6 of the 332 joint-free (14) and 32 of the 668 jointed (42); seeds 0–299, 300
 steps, joint-free: none of 91.
 
-Not covered: pairs with a jointed body (skipped above: moving one body of a joint group
-alone opens its joints). Of the first 19 jointed scenes of seeds 1000–1999 that end deep,
-7 are such a pair (a free body hitting a jointed one, e.g. seed 1121: a 25 g box at 48 m/s
-into a 10.5 kg jointed box); the other 12 are a light jointed body in a wall or the ground
-(mass ratios in the group of 370 to 7e5, most with the joint open 0.3–4.5 m): the joint's
-rows pull it in, and this stage, which lets a body end a step SLOP deeper than it began,
-lets it creep in a few mm a step (seed 1264: a 3 g plank hinged to an 805 kg box).
+Jointed scenes (stop 37): of the first 19 jointed scenes of seeds 1000–1999 that ended a
+step deep, 7 were a free body hitting a jointed one, which item 6 then skipped (seed 1121: a
+25 g box at 48 m/s into a 10.5 kg jointed box, 14.4 cm); the other 12 a light jointed body in a
+wall or the ground (mass ratios in the group of 370 to 7e5): the joint's tree, solved exactly,
+drags it in against contact rows that carry only its own mass, and item 4's target let it creep
+in SLOP a step (seed 1264: a 2.8 g plank hinged on a 4 m arm to an 805 kg box, 9.3 cm). With
+item 6 on joint groups and item 4's floor (120 steps): seeds 1000–1199, 5 → 0 scenes deep;
+1200–1399, 8 → 2 (1263 jointed, 1279 joint-free); 300 steps: seeds 0–199's 143 jointed,
+7 → 1 (163), none gains; the 91 joint-free of 0–299 none deep, as before.
+Not covered: a slow body (not fast) dragged in (its rows, found with its travel, are what hold
+it); the cause itself, the contact rows of a tree's body solved with that body's mass alone
+while the tree is solved exactly (rows through the tree, as ``joint_loops`` solves a loop's,
+would carry the group's mass).
 """
 
 from __future__ import annotations
@@ -243,6 +256,21 @@ def _pose(k, t, x_start, q_start, sweep):
 
 
 @njit(cache=True, nogil=True)
+def _gap_at(i, j, t, x_start, q_start, sweep, shape, size, plane_n, plane_d, axes_i, axes_j):
+    """The signed gap (``_impact``'s) of body i at fraction t of its sweep from body j's
+    (j ≥ 0) or from plane −1 − j."""
+    pi, qi = _pose(i, t, x_start, q_start, sweep)
+    if j < 0:
+        s = -1 - j
+        return _plane_gap(shape[i], size[i], pi[0], pi[1], pi[2], qi[0], qi[1], qi[2], qi[3],
+                          plane_n[s, 0], plane_n[s, 1], plane_n[s, 2], plane_d[s], axes_i)
+    pj, qj = _pose(j, t, x_start, q_start, sweep)
+    gap, _, _, _ = _pair_gap(shape[i], size[i], pi, qi, shape[j], size[j], pj, qj, axes_i,
+                             axes_j)
+    return gap
+
+
+@njit(cache=True, nogil=True)
 def _impact(i, j, limit, x_start, q_start, sweep, shape, size, plane_n, plane_d, axes_i,
             axes_j):
     """The fraction of the step (< ``limit``) at which body i's sweep first brings it to the
@@ -278,6 +306,13 @@ def _impact(i, j, limit, x_start, q_start, sweep, shape, size, plane_n, plane_d,
                                         axes_i, axes_j)
         if it == 0:
             target = min(SLOP, gap - SLOP)
+            if gap < -SLOP and (j < 0 or (sweep[j, 9] == 0.0 and sweep[j, 6] == 0.0)):
+                # deeper than SLOP in a static body or a plane already (what a joint pulls in
+                # against the rows): kept where it began unless it ends no deeper (a target
+                # SLOP deeper each step let it creep in, SLOP a step: fuzz seed 1264)
+                end = _gap_at(i, j, limit, x_start, q_start, sweep, shape, size, plane_n,
+                              plane_d, axes_i, axes_j)
+                return limit if end >= gap else 0.0
         elif gap <= target + TOLERANCE or it == ITERATIONS:
             return t
         rate = max(0.0, -(nx * ex + ny * ey + nz * ez)) + spin
@@ -286,6 +321,26 @@ def _impact(i, j, limit, x_start, q_start, sweep, shape, size, plane_n, plane_d,
         t += (gap - target) / rate
         if t >= limit:
             return limit
+    return t
+
+
+@njit(cache=True, nogil=True)
+def _impact_still(i, j, x_start, q_start, sweep, shape, size, plane_n, plane_d, axes_i, axes_j,
+                  pos, quat):
+    """``_impact`` of body i's sweep against body j held where the step left it (its row of
+    the sweep and its start pose stood in for that while it runs, then put back)."""
+    row = sweep[j].copy()
+    x0 = x_start[j].copy()
+    q0 = q_start[j].copy()
+    sweep[j, 0:7] = 0.0
+    sweep[j, 9] = 0.0
+    x_start[j] = pos[j]
+    q_start[j] = quat[j]
+    t = _impact(i, j, 1.0, x_start, q_start, sweep, shape, size, plane_n, plane_d, axes_i,
+                axes_j)
+    sweep[j] = row
+    x_start[j] = x0
+    q_start[j] = q0
     return t
 
 
@@ -329,12 +384,13 @@ def _move_back(k, t, pos, quat, ang, inv_inertia, inv_i, x_start, q_start, sweep
 
 
 @njit(cache=True, nogil=True)
-def _rewind(i, j, pos, quat, vel, inv_mass, shape, size, x_start, dt, axes_i, axes_j):
-    """Moving bodies i and j that the step left deep (``_pair_deep``), if they still move the
-    way they came in: their relative motion is rewound, up to one step
-    at their end velocities, to where they are ``SLOP`` apart, about their centre of mass
-    (each moves by its share, inverse-mass weighted, of a displacement along their relative
-    velocity). Returns whether it moved them: not when rewinding a whole step leaves them
+def _rewind(i, j, pos, quat, rel, share, shape, size, x_start, dt, axes_i, axes_j):
+    """Free moving bodies i and j that the step left deep (``_pair_deep``), if they still move
+    the way they came in: how far back (a time in [0, dt]) their relative motion, at their
+    relative velocity ``rel``, is to be rewound to where they are ``SLOP`` apart, about their
+    centre of mass: i moves by −share·back·rel, j by (1 − share)·back·rel, ``share`` i's
+    inverse mass over both's. Returns −1 where that does not part them: they do not
+    approach along their travel (the rows turned them), or rewinding a whole step leaves them
     closer than ``SLOP`` (the turn of a spinning body took them in, which only the sweep
     undoes).
 
@@ -344,19 +400,20 @@ def _rewind(i, j, pos, quat, vel, inv_mass, shape, size, x_start, dt, axes_i, ax
     orientations are kept, so linear and angular momentum and kinetic energy are those the
     solve gave, to round-off (issue 26 point 8). (Moving each body back along its own sweep,
     as against a static body, changed a fast pair's angular momentum by 5 %.)"""
-    rx, ry, rz = vel[i, 0] - vel[j, 0], vel[i, 1] - vel[j, 1], vel[i, 2] - vel[j, 2]
+    rx, ry, rz = rel[0], rel[1], rel[2]
     closed = 0.0  # their relative velocity along their relative travel this step
     for k in range(3):
-        closed += (rx, ry, rz)[k] * (pos[i, k] - x_start[i, k] - pos[j, k] + x_start[j, k])
+        closed += rel[k] * (pos[i, k] - x_start[i, k] - pos[j, k] + x_start[j, k])
     if closed <= 0.0:
-        return False  # the rows turned it: not moving on the way it came in
-    wi = inv_mass[i] / (inv_mass[i] + inv_mass[j])
+        return -1.0  # the rows turned it: not moving on the way it came in
+    wi = share
     # u over [0, 1]: from the pose rewound by a whole step (u = 0) to the step's end (u = 1);
     # conservative advancement from u = 0 to where the gap first closes to SLOP (translation
-    # only: the gap along n closes at most at −n·(v_i − v_j)·dt over u)
+    # only: the gap along n closes at most at −n·rel·dt over u)
     pi = np.empty(3)
     pj = np.empty(3)
     u = 0.0
+    back = dt
     for it in range(ITERATIONS + 1):
         back = (1.0 - u) * dt
         for k in range(3):
@@ -366,27 +423,25 @@ def _rewind(i, j, pos, quat, vel, inv_mass, shape, size, x_start, dt, axes_i, ax
         gap, nx, ny, nz = _pair_gap(shape[i], size[i], pi, quat[i], shape[j], size[j], pj,
                                     quat[j], axes_i, axes_j)
         if it == 0 and gap < SLOP:
-            return False  # a step's travel back does not part them: a turn took them in
+            return -1.0  # a step's travel back does not part them: a turn took them in
         if gap <= SLOP + TOLERANCE or it == ITERATIONS:
             break
         rate = -(nx * rx + ny * ry + nz * rz) * dt
         if rate <= 0.0:
             break  # the rest of the way does not close it along n: stop here (apart)
         u = min(1.0, u + (gap - SLOP) / rate)
-    for k in range(3):
-        pos[i, k] = pi[k]
-        pos[j, k] = pj[k]
-    return True
+    return back
 
 
 @njit(cache=True, nogil=True)
 def clamp(pos, quat, vel, ang, inv_mass, inv_inertia, inv_i, shape, size, awake, x_start,
-          q_start, dt, plane_n, plane_d, exclude):
+          q_start, dt, plane_n, plane_d, exclude, anchored):
     """Move every fast awake body back to its earliest time of impact with a static body or a
     plane this step, then part the pairs of a fast body and a moving one that ended it deep
     (module docstring); ``x_start``, ``q_start``: the poses of the step's start;
     ``exclude``: sorted keys lo·N + hi of jointed pairs (not swept against each other, and moved
-    back together). Returns how many bodies it moved."""
+    back together); ``anchored``: the bodies a joint holds to a world point. Returns how many
+    bodies it moved."""
     nb = pos.shape[0]
     axes_i = np.empty((3, 3))
     axes_j = np.empty((3, 3))
@@ -466,33 +521,72 @@ def clamp(pos, quat, vel, ang, inv_mass, inv_inertia, inv_i, shape, size, awake,
             _move_back(k, best[k], pos, quat, ang, inv_inertia, inv_i, x_start, q_start, sweep,
                        axes_i, axes_j)
             count += 1
-    # pairs of moving bodies that the rows let end the step deep (``_pair_deep``), not
-    # jointed: rewound about their centre of mass while they still move the way they came in
-    # (``_rewind``), else each back along its sweep to the pair's time of impact
-    jointed = np.zeros(nb, np.bool_)
-    for e in range(exclude.shape[0]):
-        jointed[exclude[e] // nb] = True
-        jointed[exclude[e] % nb] = True
+    # pairs of moving bodies that the rows let end the step deep (``_pair_deep``): two free
+    # bodies are rewound about their centre of mass while they still move the way they came
+    # in (``_rewind``); else each body of both units goes back along its sweep to the pair's
+    # time of impact, a unit being a body alone or the whole group joints hold it in (moved
+    # alone, one body of a group opens its joints: the stage skipped such pairs, and a free
+    # body driven into a jointed one stayed deep, fuzz seed 1121). (A group rewound as one
+    # along its centre of mass's velocity relative to the other body moved that body off its
+    # own path, through the ground: seed 1138.)
+    members = np.zeros(nb, np.int64)
+    for k in range(nb):
+        members[find_root(root, k)] += 1
+    for e in range(anchored.shape[0]):
+        members[find_root(root, anchored[e])] += 1  # (a world point: not a body alone)
+    rel = np.empty(3)
     for i in range(nb):
-        if not fast[i] or jointed[i]:
+        if not fast[i]:
             continue
+        ri = find_root(root, i)
         for j in range(nb):
-            if (j == i or inv_mass[j] == 0.0 or not solid[j] or not awake[j] or jointed[j]
+            if (j == i or inv_mass[j] == 0.0 or not solid[j] or not awake[j]
                     or (fast[j] and j < i)):
                 continue  # (a pair of two fast bodies once, from its lower index)
+            rj = find_root(root, j)
+            if rj == ri:
+                continue  # one joint group: its joints and rows hold its bodies together
             cx, cy, cz = pos[i, 0] - pos[j, 0], pos[i, 1] - pos[j, 1], pos[i, 2] - pos[j, 2]
             if math.sqrt(cx * cx + cy * cy + cz * cz) > sweep[i, 8] + sweep[j, 8]:
                 continue  # their bounding spheres apart
             if not _pair_deep(i, j, pos, quat, shape, size, x_start, q_start, axes_i, axes_j):
                 continue
-            if _rewind(i, j, pos, quat, vel, inv_mass, shape, size, x_start, dt, axes_i,
-                       axes_j):
-                count += 2
-                continue
+            if members[ri] == 1 and members[rj] == 1:
+                share = inv_mass[i] / (inv_mass[i] + inv_mass[j])
+                for u in range(3):
+                    rel[u] = vel[i, u] - vel[j, u]
+                back = _rewind(i, j, pos, quat, rel, share, shape, size, x_start, dt, axes_i,
+                               axes_j)
+                if back >= 0.0:
+                    for u in range(3):
+                        pos[i, u] -= share * back * rel[u]
+                        pos[j, u] += (1.0 - share) * back * rel[u]
+                    count += 2
+                    continue
+            if (members[ri] == 1) != (members[rj] == 1):
+                # a free body and a joint group: the free body alone goes back along its
+                # sweep, to where it meets the group's body where the step left it (the group
+                # moved back along its bodies' sweeps opened a ball joint on a 5 m arm by
+                # 2.5 cm, the chord of its turn: seed 1121)
+                f, o = (i, j) if members[ri] == 1 else (j, i)
+                t = _impact_still(f, o, x_start, q_start, sweep, shape, size, plane_n, plane_d,
+                                  axes_i, axes_j, pos, quat)
+                pf, qf = _pose(f, t, x_start, q_start, sweep)
+                gap, _, _, _ = _pair_gap(shape[f], size[f], pf, qf, shape[o], size[o], pos[o],
+                                         quat[o], axes_i, axes_j)
+                if gap >= -SLOP:  # (else its whole sweep is in the group's body: below)
+                    if t < best[f]:
+                        best[f] = t
+                        _move_back(f, t, pos, quat, ang, inv_inertia, inv_i, x_start,
+                                   q_start, sweep, axes_i, axes_j)
+                        count += 1
+                    continue
             t = _impact(i, j, 1.0, x_start, q_start, sweep, shape, size, plane_n, plane_d,
                         axes_i, axes_j)
-            for k in (i, j):
-                if t < best[k]:
+            for k in range(nb):  # both units, each body along its sweep to the impact
+                rk = find_root(root, k)
+                if ((rk == ri or rk == rj) and solid[k] and inv_mass[k] != 0.0 and awake[k]
+                        and t < best[k]):
                     best[k] = t
                     _move_back(k, t, pos, quat, ang, inv_inertia, inv_i, x_start, q_start,
                                sweep, axes_i, axes_j)
@@ -501,8 +595,10 @@ def clamp(pos, quat, vel, ang, inv_mass, inv_inertia, inv_i, shape, size, awake,
 
 
 def sweep_back(bodies, planes, exclude, x_start: np.ndarray, q_start: np.ndarray,
-               dt: float) -> int:
-    """``clamp`` on a ``Bodies`` and the world's ``Plane``s; returns the bodies moved."""
+               dt: float, anchored=None) -> int:
+    """``clamp`` on a ``Bodies`` and the world's ``Plane``s (``exclude``: the jointed pairs'
+    keys, ``anchored``: the bodies jointed to a world point; None for none); returns the
+    bodies moved."""
     b = bodies
     n = len(planes)
     plane_n = np.empty((n, 3))
@@ -512,6 +608,7 @@ def sweep_back(bodies, planes, exclude, x_start: np.ndarray, q_start: np.ndarray
         plane_d[i] = p.offset
     if exclude is None:
         exclude = np.zeros(0, np.int64)
+    anchored = np.zeros(0, np.int64) if anchored is None else np.asarray(anchored, np.int64)
     return int(clamp(b.position, b.orientation, b.velocity, b.angular_velocity, b.inv_mass,
                      b.inv_inertia, b.inv_inertia_world, b.shape, b.size, b.awake, x_start,
-                     q_start, dt, plane_n, plane_d, exclude))
+                     q_start, dt, plane_n, plane_d, exclude, anchored))
