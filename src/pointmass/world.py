@@ -191,6 +191,12 @@ class World:
         self._substeps = value
 
     @property
+    def body_step(self) -> str:
+        """The rigid bodies' contact stage this world was made with: "impulses" or "soft"
+        (read-only: a stage keeps state, warm starts and rows, the other cannot take over)."""
+        return self._body_step
+
+    @property
     def sleep(self) -> bool:
         """Whether still islands of bodies and particles sleep (see the class docstring);
         turning it off wakes every body and particle."""

@@ -81,6 +81,6 @@ def test_the_fracture_demo_breaks_its_block_with_either_stage(stage, monkeypatch
     sim = Simulation(demo)
     for _ in range(6 * 30):
         sim.advance(1.0 / 30.0)
-    assert sim.world._body_step == stage
+    assert sim.world.body_step == stage
     assert sim.scene.handles["split"] is not None
     sim.check()

@@ -140,7 +140,7 @@ def test_a_rope_bridge_of_fifty_planks_holds_at_the_defaults():
     assert (rows.mode == joint_tree.LOOP).sum() == 1
     mass = 1.0 / world.bodies.inv_mass
     # the drift's step: the soft step drifts in body_soft.SUBSTEPS substeps of every step
-    h = DT / (body_soft.SUBSTEPS if world._body_step == "soft" else world.substeps)
+    h = DT / (body_soft.SUBSTEPS if world.body_step == "soft" else world.substeps)
 
     def shadow():
         return _energy(world) - 0.5 * h * G * float(mass @ world.bodies.velocity[:, 1])

@@ -32,7 +32,7 @@ def test_the_ragdoll_rests_within_its_limits_in_the_soft_step(seed, monkeypatch)
     demo = load_demo("ragdoll")
     monkeypatch.setattr(demo.module, "World", functools.partial(pm.World, body_step="soft"))
     sim = pm.Simulation(demo, overrides=[f"seed={seed}"])
-    assert sim.world._body_step == "soft"
+    assert sim.world.body_step == "soft"
     for _ in range(round(4.5 * 30)):
         sim.advance(1 / 30)
     sim.check()

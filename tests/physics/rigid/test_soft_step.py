@@ -311,3 +311,13 @@ def test_soft_step_hangs_a_chain_of_ten_boxes_still_and_closed():
         world.step(DT)
     assert world.joints.separations().max() < 0.5e-3
     assert np.abs(world.bodies.velocity).max() < 1e-3
+
+
+def test_a_world_names_its_body_stage_and_keeps_it():
+    assert pm.World().body_step == "impulses"  # the default until the soft step is made it
+    assert pm.World(body_step="soft").body_step == "soft"
+    world = pm.World(body_step="impulses")
+    with pytest.raises(AttributeError):
+        world.body_step = "soft"  # read-only: each stage keeps its own warm starts and rows
+    with pytest.raises(ValueError, match="body_step"):
+        pm.World(body_step="sequential")
