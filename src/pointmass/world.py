@@ -582,6 +582,7 @@ class World:
             view = b
             if packed is not None:
                 view = packed
+                assert integrated is not None  # a packed view holds particles
                 self._first_particle_kick(packed, integrated, h, dt, acc)
             forces = None
             if self.body_forces:  # found again every substep, where the bodies then are
