@@ -13,7 +13,6 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from . import particle_sleep as psleep
-from .collide import Plane
 from .rigid import sleep as sleeping
 from .rigid.collide import generate as generate_body_contacts
 from .rigid.particle_body import add_particle_contacts
@@ -97,15 +96,13 @@ def wake_particles(world: World, marked: np.ndarray) -> np.ndarray:
     return woken
 
 
-def find_body_rows(world: World, h: float, dt: float, acc: np.ndarray, planes=None):
+def find_body_rows(world: World, h: float, dt: float, acc: np.ndarray, planes: list):
     """This substep's body rows, then the particle–body rows; returns the packed view (or
     None) and ``acc`` extended to it. A sleeping island that a row wakes gets its first
     kick (of h) and the rows are made again, until no row touches a sleeping body that
-    should wake. ``planes``: the world's ``Plane``s, when the caller has them already."""
+    should wake. ``planes``: the world's ``Plane``s (``World._planes``, found once a step)."""
     b = world.bodies
     p = world.particles
-    if planes is None:
-        planes = [g for g in world.contact_generators if isinstance(g, Plane)]
     links = body_links(world) if world._sleep else None
     exclude = world.joints.pair_keys(b.count) if world.joints else None
     while True:

@@ -522,9 +522,10 @@ class World:
         b = self.bodies
         kept, acc = self._apply_body_forces(dt)
         p = self.particles
+        planes = self._planes()
         try:  # the kick, and that of bodies woken while finding contacts, read the forces
             self._kick(dt, b.awake)
-            packed, acc = wake.find_body_rows(self, dt, dt, acc)
+            packed, acc = wake.find_body_rows(self, dt, dt, acc, planes)
             self._packed = packed  # the islands read its particles (``_fall_asleep``)
         finally:
             if kept is not None:
@@ -549,7 +550,6 @@ class World:
             self.solver.project_bodies(packed, rows, self.body_impulses, self.joints)
             packed.take_positions(b, p)
         # what the rows did not foresee (an impulse sent a body where no row looked)
-        planes = [g for g in self.contact_generators if isinstance(g, Plane)]
         exclude = self.joints.pair_keys(b.count) if self.joints else None
         live = b.awake if self._sleep and not b.awake.all() else None
         rows.position_passes += project_late(b, planes, exclude, self._late_contacts, dt,
@@ -574,7 +574,7 @@ class World:
         p = self.particles
         # the particles the integration moved (and kicked by dt); none: no packed view
         integrated = p.awake.copy() if p.count else None
-        planes = [g for g in self.contact_generators if isinstance(g, Plane)]  # found once
+        planes = self._planes()  # found once a step
         try:  # the first kicks (here, and of woken bodies); ``body_soft`` gives the others
             self._kick(h, b.awake)
             packed, acc = wake.find_body_rows(self, h, dt, acc, planes)
@@ -606,6 +606,11 @@ class World:
             sweep_back(b, planes, exclude, x_start, q_start, dt, anchored)
         self._body_rows = rows
         return rows
+
+    def _planes(self) -> list[Plane]:
+        """The world's ``Plane``s (and ``Ground``s) among its contact generators: what the
+        body stages collide and sweep against, found once a step."""
+        return [g for g in self.contact_generators if isinstance(g, Plane)]
 
     def _first_particle_kick(self, packed, integrated: np.ndarray, h: float, dt: float,
                              acc: np.ndarray) -> None:
