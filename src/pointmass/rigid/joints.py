@@ -52,6 +52,10 @@ class Joint:
         local_b: The joint point in body B's coordinates [m] (the world anchor [m] when
             ``body_b`` is None); None: wherever body A's point is when the joint is added.
         axis: Unit axis in body A's coordinates for the angular rows (twist / hinge axis).
+        friction: The most torque [N·m] the joint resists the two bodies' relative turning
+            with, in [0, inf) (0: free; Box2D's joint friction, a motor at zero speed with that
+            torque): a real joint's friction, which brings a dangling limb to rest. A limb on a
+            frictionless joint swings as an undamped pendulum, keeping its energy.
     """
 
     #: Which rows the kernels build: ``BALL``, ``CONE`` or ``HINGE``.
@@ -59,7 +63,8 @@ class Joint:
     #: What the renderer draws it as (a link kind, ``render.gather``).
     kind = "joint"
 
-    def __init__(self, body_a, local_a, body_b=None, local_b=None, *, axis=(0.0, 1.0, 0.0)):
+    def __init__(self, body_a, local_a, body_b=None, local_b=None, *, axis=(0.0, 1.0, 0.0),
+                 friction: float = 0.0):
         self.a = body_index(body_a, "body_a")
         self.b = -1 if body_b is None else body_index(body_b, "body_b")
         #: The handles given (``Body``, or None for an index): checked against the world the
@@ -78,6 +83,7 @@ class Joint:
         if not size > 1e-9:
             raise ValueError(f"axis must be a non-zero vector, got {axis.tolist()}")
         self.axis = axis / size
+        self.friction = check.scalar(friction, "friction", low=0.0)
         #: Frames (w, x, y, z) whose x axis is the joint axis, in A's and B's coordinates
         #: (B's: world coordinates for a world anchor); set when added to a world.
         self.frame_a = None
@@ -168,8 +174,8 @@ class BallJoint(Joint):
     """
 
     def __init__(self, body_a, local_a, body_b=None, local_b=None, *, axis=(0.0, 1.0, 0.0),
-                 cone: float | None = None, twist=None) -> None:
-        super().__init__(body_a, local_a, body_b, local_b, axis=axis)
+                 cone: float | None = None, twist=None, friction: float = 0.0) -> None:
+        super().__init__(body_a, local_a, body_b, local_b, axis=axis, friction=friction)
         self.cone = None if cone is None else _angle(cone, "cone", 0.0, math.pi)
         self.twist = None if twist is None else _range(twist, "twist")
         self.variant = BALL if cone is None and twist is None else CONE
@@ -188,8 +194,8 @@ class HingeJoint(Joint):
     variant = HINGE
 
     def __init__(self, body_a, local_a, body_b=None, local_b=None, *, axis=(1.0, 0.0, 0.0),
-                 limits=None) -> None:
-        super().__init__(body_a, local_a, body_b, local_b, axis=axis)
+                 limits=None, friction: float = 0.0) -> None:
+        super().__init__(body_a, local_a, body_b, local_b, axis=axis, friction=friction)
         self.range = None if limits is None else _range(limits, "limits")
 
     def limits(self) -> tuple[float, float, float]:

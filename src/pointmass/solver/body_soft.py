@@ -87,7 +87,7 @@ from ..rigid.shapes import SPHERE
 from ..rigid.step import integrate_positions, integrate_velocities
 from . import body_manifolds as bm
 from . import body_passes as bp
-from . import joint_soft, soft_energy
+from . import joint_friction, joint_soft, soft_energy
 from .body_stages import _arm_mass
 from .kernels import bounce_target
 
@@ -865,6 +865,7 @@ def step(view, bodies, contacts: BodyContacts, acceleration: np.ndarray,
                                       r.mass_n, v.inv_mass, v.velocity, v.angular_velocity,
                                       r.impulse, r.jt1, r.jt2, r.jtw, r.farm)
         if jointed:
+            joint_friction.apply(v, joints, h)  # (Box2D's order: a joint's friction first)
             passes += joint_soft.solve(v, joints, jr, False, (lambda: _pass(
                 v, c, r, inv_h, True, soft, static)) if c.count else None)
         bad = integrate_positions(v.position, v.orientation, v.velocity, v.angular_velocity,
