@@ -77,7 +77,8 @@ class Joint:
         if self.a == self.b:
             raise ValueError(f"body_a and body_b must be different bodies, both are {self.a}")
         self.local_a = check.vec3(local_a, "local_a")
-        self.local_b = None if local_b is None else check.vec3(local_b, "local_b")
+        self.local_b: np.ndarray | None = None if local_b is None \
+            else check.vec3(local_b, "local_b")
         axis = check.vec3(axis, "axis")
         size = float(np.linalg.norm(axis))
         if not size > 1e-9:
@@ -86,8 +87,8 @@ class Joint:
         self.friction = check.scalar(friction, "friction", low=0.0)
         #: Frames (w, x, y, z) whose x axis is the joint axis, in A's and B's coordinates
         #: (B's: world coordinates for a world anchor); set when added to a world.
-        self.frame_a = None
-        self.frame_b = None
+        self.frame_a: np.ndarray | None = None
+        self.frame_b: np.ndarray | None = None
         self._bodies: Bodies | None = None
 
     def limits(self) -> tuple[float, float, float]:
@@ -139,6 +140,7 @@ class Joint:
         b = self._bodies
         if b is None:
             raise RuntimeError("the joint is not in a world yet (world.add(joint))")
+        assert self.local_b is not None  # ``bind`` sets it
         pa = b.position[self.a] + _rotation(b.orientation[self.a]) @ self.local_a
         if self.b < 0:
             return pa, self.local_b.copy()
