@@ -12,7 +12,8 @@ particles with a radius; no scenery, a ground, or six walls (a third each); grav
 ``python benchmarks/rigid_fuzz.py --seeds 0:1000`` runs each scene in a child process under a
 watchdog (a step that has not returned after ``--hang`` seconds is a hang) and prints the
 counts of issue 30's "What was measured"; the test (tests/physics/test_fuzz_rigid.py) runs the
-same scenes in process.
+same scenes in process. ``--combine LOG ...`` counts over the logs of such runs made side
+by side (benchmarks/rigid_device_check.sh, on a many-core machine).
 """
 
 from __future__ import annotations
@@ -278,7 +279,12 @@ def main() -> None:
     parser.add_argument("--joint-free", action="store_true",
                         help="only the scenes without joints (what the soft step can build)")
     parser.add_argument("--child", action="store_true", help=argparse.SUPPRESS)
+    parser.add_argument("--combine", nargs="+", metavar="LOG",
+                        help="count over the logs of runs made in parallel (each one's output)")
     args = parser.parse_args()
+    if args.combine:
+        _combine(args.combine)
+        return
     first, last = (int(s) for s in args.seeds.split(":"))
     seeds = list(range(first, last))
     if args.joint_free:
@@ -316,6 +322,21 @@ def main() -> None:
         hangs.append(started)
         print(f"seed {started}: a step did not return within {args.hang} s", flush=True)
         seeds = [s for s in seeds if s > started]
+    _report(rows, hangs)
+
+
+def _combine(logs: list[str]) -> None:
+    """The counts over several runs' logs (parts of a seed range run side by side,
+    benchmarks/rigid_device_check.sh): their "done" rows and hangs, reported as one run."""
+    rows, hangs = [], []
+    for log in logs:
+        with open(log) as f:
+            for line in f:
+                parts = line.split()
+                if parts[:1] == ["done"]:
+                    rows.append(parts[1:])
+                elif line.startswith("seed ") and "did not return" in line:
+                    hangs.append(int(parts[1].rstrip(":")))
     _report(rows, hangs)
 
 

@@ -47,6 +47,12 @@ BONES = {
 }
 BEND = math.radians(137.0)
 UP = (0.0, 1.0, 0.0)
+#: Every joint's friction [N·m] (Box2D's ragdoll gives its joints some too): without it a shin
+#: that comes to hang off a propped knee swings on it for ever (the joints keep energy), as
+#: seed 2's did (0.12 m/s at 8 s), and a head on its neck's cone at 0.05 N·m (seed 5). 0.2 N·m
+#: is 9 % of the shin's weight's torque about the knee held level (2.2 N·m): no limb is held
+#: up by it (a shin hangs within 5° of straight down).
+FRICTION = 0.2
 
 
 def joints(bone) -> list:
@@ -61,22 +67,24 @@ def joints(bone) -> list:
     for side, z in (("r", -0.1), ("l", 0.1)):
         # a knee: the shin turns about +z only backward (its foot toward -x)
         at(f"shin_{side}", f"thigh_{side}", (0.0, 0.50, z),
-           lambda a, p, b: HingeJoint(a, p, b, axis=(0, 0, 1), limits=(-BEND, 0.0)))
+           lambda a, p, b: HingeJoint(a, p, b, axis=(0, 0, 1), limits=(-BEND, 0.0),
+                                      friction=FRICTION))
         at(f"thigh_{side}", "pelvis", (0.0, 0.96, z),
            lambda a, p, b: BallJoint(a, p, b, axis=UP, cone=math.radians(60),
-                                     twist=(-0.5, 0.5)))
+                                     twist=(-0.5, 0.5), friction=FRICTION))
     for side, z in (("r", -0.26), ("l", 0.26)):
         at(f"forearm_{side}", f"arm_{side}", (0.0, 1.225, z),  # an elbow bends forward
-           lambda a, p, b: HingeJoint(a, p, b, axis=(0, 0, 1), limits=(0.0, BEND)))
+           lambda a, p, b: HingeJoint(a, p, b, axis=(0, 0, 1), limits=(0.0, BEND),
+                                      friction=FRICTION))
         at(f"arm_{side}", "chest", (0.0, 1.55, z),
            lambda a, p, b: BallJoint(a, p, b, axis=UP, cone=math.radians(80),
-                                     twist=(-0.8, 0.8)))
+                                     twist=(-0.8, 0.8), friction=FRICTION))
     for child, parent, y, cone, twist in (("abdomen", "pelvis", 1.14, 25, 0.4),
                                           ("chest", "abdomen", 1.32, 25, 0.4),
                                           ("head", "chest", 1.58, 40, 0.8)):
         at(child, parent, (0.0, y, 0.0),
            lambda a, p, b, c=cone, t=twist: BallJoint(a, p, b, axis=UP, cone=math.radians(c),
-                                                      twist=(-t, t)))
+                                                      twist=(-t, t), friction=FRICTION))
     return out
 
 

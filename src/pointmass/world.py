@@ -52,14 +52,12 @@ class World:
             force pushes it or the user moves it (``rigid/islands.py``, ``rigid/sleep.py``,
             ``particle_sleep.py``). On by default; False gives everything a full step always
             (bit for bit the trajectory of an engine without sleep).
-        body_step: The rigid bodies' contact stage: "impulses" (the default: sequential
-            impulses, exact normals for small sets, position projection) or "soft" (Box2D
-            v3's soft step, ``solver/body_soft.py``: after one collision pass, 4 substeps of
-            soft contacts and relax, then restitution; it keeps linear and angular momentum
-            exactly, stands towers of 30 boxes and holds joints per substep
-            (``solver/joint_soft.py``), but is not the default yet: joint limits give under
-            load (the ragdoll's) and pairs of moving bodies can end a step deep; see that
-            module).
+        body_step: The rigid bodies' contact stage: "soft" (the default: Box2D v3's soft
+            step, ``solver/body_soft.py``: after one collision pass, 4 substeps of soft
+            contacts and joints (``solver/joint_soft.py``) and relax, then restitution; it
+            keeps linear and angular momentum exactly, stands towers of 30 boxes and holds
+            joints per substep) or "impulses" (the earlier stage: sequential impulses, exact
+            normals for small sets, position projection; still selectable).
 
         settings: The solver's tuning numbers (``pm.SolverSettings``; its defaults when None):
             tolerances, caps on passes, when the exact solve and the threads are used.
@@ -74,7 +72,7 @@ class World:
 
     def __init__(self, gravity=(0.0, -9.81, 0.0), *, iterations: int | None = None,
                  resolver: str = "sequential", restitution_threshold: float = 0.0,
-                 substeps: int = 1, sleep: bool = True, body_step: str = "impulses",
+                 substeps: int = 1, sleep: bool = True, body_step: str = "soft",
                  settings: SolverSettings | None = None) -> None:
         self.particles = Particles()
         #: Rigid bodies (``add_body``); they meet each other, every ``Plane``/``Ground`` and every

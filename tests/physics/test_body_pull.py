@@ -12,6 +12,7 @@ import pytest
 import pointmass as pm
 from pointmass.rigid.pull import BodyPull, largest_eigenvalue, point_mass
 from pointmass.rigid.shapes import Box
+from pointmass.solver import body_soft
 
 CUBE = (0.5, 0.5, 0.5)
 
@@ -68,16 +69,21 @@ def test_a_body_held_by_a_corner_turns_and_settles_with_the_corner_on_the_target
 def test_a_light_plank_held_by_its_end_stays_stable_and_hangs_by_m_g_over_k():
     """A 10 g plank 2 m long held by its tip weighs ~1.4 g across the lever arm: uncapped, the
     grab's damping would put the step far past the stability bound (h²ω² + 2hγ < 4 in the
-    lightest direction); capped, it stays stable, and the tip hangs m·g/k below the cursor."""
-    h, mass = 1 / 30, 0.01
+    lightest direction); capped, it stays stable, and the tip hangs m·g/k below the cursor
+    (k the gain at the substep h the world applies its forces over: the soft step's dt/4, so
+    dt = 4/30 s gives h = 1/30 s)."""
+    mass = 0.01
+    h = 1 / 30
+    dt = h * body_soft.SUBSTEPS
     world = pm.World(gravity=(0.0, -9.81, 0.0))
+    assert world.body_step == "soft"
     world.add_body(Box((1.0, 0.02, 0.1)), (0.0, 1.0, 0.0), mass=mass)
     spring = world.add(BodyPull(0, (1.0, 0.02, 0.1), (3.0, 2.0, 0.0)))
     light = point_mass(1 / mass, world.bodies.inv_inertia_world[0], *spring.arm(world.bodies))
     k_free, c_free = mass * spring.omega**2, 2 * spring.omega * mass
     assert (h * h * k_free + 2 * h * c_free) / light > 4.0
     for _ in range(600):
-        world.step(h)
+        world.step(dt)
     assert np.isfinite(world.bodies.position).all()
     k, _c = spring.gains(world.bodies, h)
     sag = spring.target - spring.point_of(world.bodies)

@@ -3,9 +3,9 @@
 A generator is added with ``world.add(...)`` like a particle force generator; every substep it
 adds forces and torques to ``bodies.force`` / ``bodies.torque`` just before the bodies' kick
 (the world puts the user's own accumulated forces back afterwards, so those still act for one
-whole step). The soft step (``World(body_step="soft")``) finds them once and gives h of them
-in each of its substeps, each force at the world point where it was found
-(``solver/body_soft.kick``), so forces that balance gravity hold a body still every substep.
+whole step). The soft step (``World()``'s body stage) finds them again before each of its
+substeps, where the bodies then are, and gives h of them (``solver/body_soft.step``'s
+``forces``), so forces that balance gravity hold a body still every substep.
 World gravity already acts on every body: there is no ``BodyGravity``.
 
 What differs from Cyclone (rigid-notes §1.2, bugs R3 and R4):

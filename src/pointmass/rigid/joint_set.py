@@ -24,6 +24,7 @@ class JointArrays:
             being the joint axis, shape (J, 4).
         kind: ``joints.BALL``, ``CONE`` or ``HINGE``, shape (J,), int64.
         limits: (cone, low, high) [rad] per joint, shape (J, 3) (π, -inf, inf: none).
+        friction: The most torque [N·m] each joint resists relative turning with, (J,).
     """
 
     a: np.ndarray
@@ -34,6 +35,7 @@ class JointArrays:
     frame_b: np.ndarray
     kind: np.ndarray
     limits: np.ndarray
+    friction: np.ndarray = None
     #: The bodies' serials when each joint was bound (``Bodies.serial``), (J,); -1: none.
     serial_a: np.ndarray = None
     serial_b: np.ndarray = None
@@ -134,6 +136,7 @@ class Joints:
                 frame_b=np.array([j.frame_b for j in items], np.float64).reshape(-1, 4),
                 kind=np.array([j.variant for j in items], np.int64),
                 limits=np.array([j.limits() for j in items], np.float64).reshape(-1, 3),
+                friction=np.array([j.friction for j in items], np.float64),
                 serial_a=np.array([j.serials[0] for j in items], np.int64),
                 serial_b=np.array([j.serials[1] for j in items], np.int64))
         return self._packed

@@ -52,6 +52,10 @@ class Joint:
         local_b: The joint point in body B's coordinates [m] (the world anchor [m] when
             ``body_b`` is None); None: wherever body A's point is when the joint is added.
         axis: Unit axis in body A's coordinates for the angular rows (twist / hinge axis).
+        friction: The most torque [N·m] the joint resists the two bodies' relative turning
+            with, in [0, inf) (0: free; Box2D's joint friction, a motor at zero speed with that
+            torque): a real joint's friction, which brings a dangling limb to rest. A limb on a
+            frictionless joint swings as an undamped pendulum, keeping its energy.
     """
 
     #: Which rows the kernels build: ``BALL``, ``CONE`` or ``HINGE``.
@@ -59,7 +63,8 @@ class Joint:
     #: What the renderer draws it as (a link kind, ``render.gather``).
     kind = "joint"
 
-    def __init__(self, body_a, local_a, body_b=None, local_b=None, *, axis=(0.0, 1.0, 0.0)):
+    def __init__(self, body_a, local_a, body_b=None, local_b=None, *, axis=(0.0, 1.0, 0.0),
+                 friction: float = 0.0):
         self.a = body_index(body_a, "body_a")
         self.b = -1 if body_b is None else body_index(body_b, "body_b")
         #: The handles given (``Body``, or None for an index): checked against the world the
@@ -72,16 +77,18 @@ class Joint:
         if self.a == self.b:
             raise ValueError(f"body_a and body_b must be different bodies, both are {self.a}")
         self.local_a = check.vec3(local_a, "local_a")
-        self.local_b = None if local_b is None else check.vec3(local_b, "local_b")
+        self.local_b: np.ndarray | None = None if local_b is None \
+            else check.vec3(local_b, "local_b")
         axis = check.vec3(axis, "axis")
         size = float(np.linalg.norm(axis))
         if not size > 1e-9:
             raise ValueError(f"axis must be a non-zero vector, got {axis.tolist()}")
         self.axis = axis / size
+        self.friction = check.scalar(friction, "friction", low=0.0)
         #: Frames (w, x, y, z) whose x axis is the joint axis, in A's and B's coordinates
         #: (B's: world coordinates for a world anchor); set when added to a world.
-        self.frame_a = None
-        self.frame_b = None
+        self.frame_a: np.ndarray | None = None
+        self.frame_b: np.ndarray | None = None
         self._bodies: Bodies | None = None
 
     def limits(self) -> tuple[float, float, float]:
@@ -133,6 +140,7 @@ class Joint:
         b = self._bodies
         if b is None:
             raise RuntimeError("the joint is not in a world yet (world.add(joint))")
+        assert self.local_b is not None  # ``bind`` sets it
         pa = b.position[self.a] + _rotation(b.orientation[self.a]) @ self.local_a
         if self.b < 0:
             return pa, self.local_b.copy()
@@ -168,8 +176,8 @@ class BallJoint(Joint):
     """
 
     def __init__(self, body_a, local_a, body_b=None, local_b=None, *, axis=(0.0, 1.0, 0.0),
-                 cone: float | None = None, twist=None) -> None:
-        super().__init__(body_a, local_a, body_b, local_b, axis=axis)
+                 cone: float | None = None, twist=None, friction: float = 0.0) -> None:
+        super().__init__(body_a, local_a, body_b, local_b, axis=axis, friction=friction)
         self.cone = None if cone is None else _angle(cone, "cone", 0.0, math.pi)
         self.twist = None if twist is None else _range(twist, "twist")
         self.variant = BALL if cone is None and twist is None else CONE
@@ -188,8 +196,8 @@ class HingeJoint(Joint):
     variant = HINGE
 
     def __init__(self, body_a, local_a, body_b=None, local_b=None, *, axis=(1.0, 0.0, 0.0),
-                 limits=None) -> None:
-        super().__init__(body_a, local_a, body_b, local_b, axis=axis)
+                 limits=None, friction: float = 0.0) -> None:
+        super().__init__(body_a, local_a, body_b, local_b, axis=axis, friction=friction)
         self.range = None if limits is None else _range(limits, "limits")
 
     def limits(self) -> tuple[float, float, float]:

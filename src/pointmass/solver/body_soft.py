@@ -49,8 +49,9 @@ solves them (``joint_soft``: warm start, soft solve, relax in the pose the drift
 point blocks of a tree of joints solved exactly, aimed at the pose the substep ends in; no
 projection).
 
-Where it stands (issue 26; ``World(body_step="soft")``, not yet the default). Measured with
-unit boxes (1 kg, μ 0.5), dt 1/60, sleep off (the default stage's figures in brackets): towers
+Where it stands (issue 26; ``World()``'s body stage since stop 39, ``body_step="soft"``).
+Measured with unit boxes (1 kg, μ 0.5), dt 1/60, sleep off (the "impulses" stage's figures in
+brackets): towers
 of 5, 10, 20, 30 boxes drift 0.06, 0.10, 1.3, 1.1 mm sideways in 60 s (20 and 30 fall); the
 210-box pyramid's apex 0.2 mm, 0.28 mm/s at 10 s (8.0 mm); two boxes colliding without gravity
 keep linear and angular momentum to 1.4e-13 (3.5e-3 with e 0, μ 0); a 1 m box dropped from
@@ -58,11 +59,11 @@ keep linear and angular momentum to 1.4e-13 (3.5e-3 with e 0, μ 0); a 1 m box d
 loses h·v/2 of height falling and rising, 2.7 % together, whatever the contact does; the
 contact's own part, apex after over apex before, is 0.248–0.257). The tests of the earlier
 stage's exact figures name their stage and are re-derived for this one (tests/physics/rigid).
-Not yet the default: collision runs once a step, so fast bodies could end steps deep in
-what no row followed: the world's continuous stage after this step (``body_continuous``)
-moves them back to their time of impact with static bodies and planes (no box passes the thin
-wall now) and parts pairs of a fast and a moving body that a step left deep; 6 of the 332
-joint-free random scenes of the slow seeds (1000–1999, 120 steps) still end a step deep.
+Collision runs once a step, so fast bodies could end steps deep in what no row followed: the
+world's continuous stage after this step (``body_continuous``) moves them back to their time
+of impact with static bodies and planes (no box passes the thin wall) and parts pairs of a
+fast and a moving body that a step left deep; 5 of the 1 000 random scenes of the slow seeds
+(1000–1999, 120 steps) still end a step deep (issue 30's bound: 1 %).
 Force-free random scenes gain no kinetic energy in a step, with joints or without (issue 30's
 1e-9; ``soft_energy``: the restitution's budget, the friction warm start clamped to the
 solve's cone before the drift, bodies on scenery alone and islands that joints or contacts
@@ -87,7 +88,7 @@ from ..rigid.shapes import SPHERE
 from ..rigid.step import integrate_positions, integrate_velocities
 from . import body_manifolds as bm
 from . import body_passes as bp
-from . import joint_soft, soft_energy
+from . import joint_friction, joint_soft, soft_energy
 from .body_stages import _arm_mass
 from .kernels import bounce_target
 
@@ -865,6 +866,7 @@ def step(view, bodies, contacts: BodyContacts, acceleration: np.ndarray,
                                       r.mass_n, v.inv_mass, v.velocity, v.angular_velocity,
                                       r.impulse, r.jt1, r.jt2, r.jtw, r.farm)
         if jointed:
+            joint_friction.apply(v, joints, h)  # (Box2D's order: a joint's friction first)
             passes += joint_soft.solve(v, joints, jr, False, (lambda: _pass(
                 v, c, r, inv_h, True, soft, static)) if c.count else None)
         bad = integrate_positions(v.position, v.orientation, v.velocity, v.angular_velocity,

@@ -44,7 +44,7 @@ import numpy as np
 from ..contacts import ContactBuffer
 from ..impulse_history import ImpulseHistory
 from ..particles import Particles
-from . import body_solver, direct, parallel, remeasure, stages
+from . import body_solver, direct, joint_friction, parallel, remeasure, stages
 from .kernels import Bodies, ContactSet
 from .partition import block_rows
 from .settings import SolverSettings
@@ -206,6 +206,7 @@ class Solver:
         ``rigid.joint_set.Joints``) are solved in the same passes."""
         passes = body_solver.MAX_VELOCITY_PASSES if self.max_passes is None \
             else max(int(self.max_passes), 1)
+        joint_friction.apply(bodies, joints, float(dt))
         return body_solver.solve_velocities(bodies, contacts, acceleration, history, float(dt),
                                             float(self.restitution_threshold), passes, joints)
 

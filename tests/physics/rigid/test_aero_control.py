@@ -36,17 +36,25 @@ def test_between_the_ends_the_tensor_is_the_linear_blend():
 
 def test_the_control_changes_the_lift_on_a_moving_body():
     """A body moving along −x through still air: the lift row gives F_y = −T[1,0]·v_x, so
-    the lift at control c is what the blended tensor says, on the force the world applies."""
-    lifts = {}
+    the lift at control c is what the blended tensor says, on the force the generator applies;
+    and a step gives the body that lift (m·Δv/dt, to the 1e-4 by which the drag slows v_x
+    over the step: the world finds the force again every substep, where the body then is)."""
+    lifts, given = {}, {}
     for c in (-1.0, 0.0, 1.0):
         world = pm.World(gravity=(0.0, 0.0, 0.0))
         body = world.add_body(Box((0.5, 0.1, 0.5)), velocity=(-10.0, 0.0, 0.0), mass=2.0)
-        world.add(AeroControl(body, BASE, LOW, HIGH, control=c))
+        control = world.add(AeroControl(body, BASE, LOW, HIGH, control=c))
+        world.bodies.clear_accumulators()
+        control.apply(world.bodies, 1e-3)
+        lifts[c] = float(world.bodies.force[0, 1])
+        world.bodies.clear_accumulators()
         world.step(1e-3)
-        lifts[c] = body.velocity[1] * 2.0 / 1e-3  # m·Δv/dt [N]
-    assert lifts[0.0] == pytest.approx(10.0, rel=1e-9)
-    assert lifts[-1.0] == pytest.approx(8.0, rel=1e-9)
-    assert lifts[1.0] == pytest.approx(14.0, rel=1e-9)
+        given[c] = body.velocity[1] * 2.0 / 1e-3  # m·Δv/dt [N]
+    assert lifts[0.0] == pytest.approx(10.0, rel=1e-12)
+    assert lifts[-1.0] == pytest.approx(8.0, rel=1e-12)
+    assert lifts[1.0] == pytest.approx(14.0, rel=1e-12)
+    for c in lifts:
+        assert given[c] == pytest.approx(lifts[c], rel=2e-4)
 
 
 @pytest.mark.parametrize("bad", [1.5, -1.01, math.nan, math.inf])

@@ -314,7 +314,7 @@ def test_soft_step_hangs_a_chain_of_ten_boxes_still_and_closed():
 
 
 def test_a_world_names_its_body_stage_and_keeps_it():
-    assert pm.World().body_step == "impulses"  # the default until the soft step is made it
+    assert pm.World().body_step == "soft"  # the default (issue 26)
     assert pm.World(body_step="soft").body_step == "soft"
     world = pm.World(body_step="impulses")
     with pytest.raises(AttributeError):
