@@ -5,7 +5,8 @@
 # bench_rigid's tower, pyramid and pit with sleep off beside MuJoCo (issue 26 point 10) and
 # bench_limits' tiny worlds (one sphere resting on the ground).
 #
-#   OUT=dir [JOBS=14] [SEEDS=0:1000] [STEPS=300] [BUDGET=60] bash benchmarks/rigid_device_check.sh
+#   OUT=dir [JOBS=14] [SEEDS=0:1000] [STEPS=300] [BUDGET=60] [ENGINES="..."] \
+#       bash benchmarks/rigid_device_check.sh
 #
 # Logs go to $OUT: fuzz_K.txt per part, fuzz.txt the counts, rigid.txt, limits.txt.
 set -uo pipefail
@@ -15,6 +16,7 @@ JOBS=${JOBS:-14}
 SEEDS=${SEEDS:-0:1000}
 STEPS=${STEPS:-300}
 BUDGET=${BUDGET:-60}
+ENGINES=${ENGINES:-pointmass pointmass-nosleep pointmass-impulses-nosleep mujoco}
 PY=${PYTHON:-python3}
 mkdir -p "$OUT"
 export PYTHONPATH="$PWD/src${PYTHONPATH:+:$PYTHONPATH}"
@@ -35,6 +37,6 @@ echo "fuzz: $(( $(date +%s) - start )) s for seeds $SEEDS, $STEPS steps, $JOBS p
 $PY benchmarks/rigid_fuzz.py --combine "$OUT"/fuzz_*.txt | tee "$OUT/fuzz.txt"
 unset NUMBA_NUM_THREADS
 $PY benchmarks/bench_rigid.py --scenes tower pyramid pit --budget "$BUDGET" \
-    --engines pointmass pointmass-nosleep pointmass-impulses-nosleep mujoco 2>&1 \
+    --engines $ENGINES 2>&1 \
     | tee "$OUT/rigid.txt"
 $PY benchmarks/bench_limits.py --only-tiny 2>&1 | tee "$OUT/limits.txt"
