@@ -53,14 +53,15 @@ class World:
             ``particle_sleep.py``). On by default; False gives everything a full step always
             (bit for bit the trajectory of an engine without sleep).
         body_step: The rigid bodies' contact stage: "soft" (the default: Box2D v3's soft
-            step, ``solver/body_soft.py``: after one collision pass, 4 substeps of soft
-            contacts and joints (``solver/joint_soft.py``) and relax, then restitution; it
-            keeps linear and angular momentum exactly, stands towers of 30 boxes and holds
-            joints per substep) or "impulses" (the earlier stage: sequential impulses, exact
-            normals for small sets, position projection; still selectable).
+            step, ``solver/body_soft.py``: after one collision pass, ``soft_substeps`` (4)
+            substeps of soft contacts and joints (``solver/joint_soft.py``) and relax, then
+            restitution; it keeps linear and angular momentum exactly, stands towers of 30
+            boxes and holds joints per substep) or "impulses" (the earlier stage: sequential
+            impulses, exact normals for small sets, position projection; still selectable).
 
         settings: The solver's tuning numbers (``pm.SolverSettings``; its defaults when None):
-            tolerances, caps on passes, when the exact solve and the threads are used.
+            tolerances, caps on passes, when the exact solve and the threads are used, the
+            soft step's substeps, contact and joint stiffness, push-out speed and slop.
     Example:
         >>> import pointmass as pm
         >>> world = pm.World(gravity=(0, -9.81, 0))
