@@ -53,14 +53,15 @@ class World:
             ``particle_sleep.py``). On by default; False gives everything a full step always
             (bit for bit the trajectory of an engine without sleep).
         body_step: The rigid bodies' contact stage: "soft" (the default: Box2D v3's soft
-            step, ``solver/body_soft.py``: after one collision pass, 4 substeps of soft
-            contacts and joints (``solver/joint_soft.py``) and relax, then restitution; it
-            keeps linear and angular momentum exactly, stands towers of 30 boxes and holds
-            joints per substep) or "impulses" (the earlier stage: sequential impulses, exact
-            normals for small sets, position projection; still selectable).
+            step, ``solver/body_soft.py``: after one collision pass, ``soft_substeps`` (4)
+            substeps of soft contacts and joints (``solver/joint_soft.py``) and relax, then
+            restitution; it keeps linear and angular momentum exactly, stands towers of 30
+            boxes and holds joints per substep) or "impulses" (the earlier stage: sequential
+            impulses, exact normals for small sets, position projection; still selectable).
 
         settings: The solver's tuning numbers (``pm.SolverSettings``; its defaults when None):
-            tolerances, caps on passes, when the exact solve and the threads are used.
+            tolerances, caps on passes, when the exact solve and the threads are used, the
+            soft step's substeps, contact and joint stiffness, push-out speed and slop.
     Example:
         >>> import pointmass as pm
         >>> world = pm.World(gravity=(0, -9.81, 0))
@@ -557,7 +558,7 @@ class World:
 
     def _substep_bodies_soft(self, dt: float):
         """The rigid bodies' substep: the first kick (gravity, forces, torques over
-        dt / ``body_soft.SUBSTEPS``), contacts once, then the soft step's substeps
+        dt / ``settings.soft_substeps``), contacts once, then the soft step's substeps
         (``solver/body_soft.py``: kick, warm start, soft solve, drift, relax; restitution),
         then its continuous collision (``solver/body_continuous.py``: a fast body back to
         where its step first meets what the collision pass did not foresee).
@@ -566,7 +567,8 @@ class World:
         in a world without particles. Sleeping bodies are skipped throughout
         (``rigid/sleep.py``)."""
         b = self.bodies
-        h = dt / body_soft.SUBSTEPS
+        st = self.solver.settings
+        h = dt / st.soft_substeps
         x_start, q_start = b.position.copy(), b.orientation.copy()  # the sweep's start
         kept, acc = self._apply_body_forces(h)  # for the first substep (and found again)
         p = self.particles
@@ -587,7 +589,8 @@ class World:
                 forces = partial(self._refind_body_forces, view, kept, h)
             rows = body_soft.step(view, b, self.body_contacts, acc, self.body_impulses, dt,
                                   self.solver.restitution_threshold, self._gravity,
-                                  self.joints if self.joints else None, forces=forces)
+                                  self.joints if self.joints else None, forces=forces,
+                                  settings=st)
         finally:
             if kept is not None:
                 b.force[:], b.torque[:] = kept
@@ -601,7 +604,7 @@ class World:
         if b.awake.any():
             exclude = self.joints.pair_keys(b.count) if self.joints else None
             anchored = [j.a for j in self.joints.items if j.b < 0] if self.joints else None
-            sweep_back(b, planes, exclude, x_start, q_start, dt, anchored)
+            sweep_back(b, planes, exclude, x_start, q_start, dt, anchored, st)
         self._body_rows = rows
         return rows
 

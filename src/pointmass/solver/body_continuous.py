@@ -1,7 +1,7 @@
 """Continuous collision of the soft step: a fast body is moved back along its step to where it
-first comes within ``SLOP`` of a static body or a plane (Box2D v3's ``b2SolveContinuous``,
+first comes within ``slop`` of a static body or a plane (Box2D v3's ``b2SolveContinuous``,
 ``src/solver.c``, with ``b2TimeOfImpact``'s target separation); a fast body and a moving one
-that the step left deep in each other are parted to ``SLOP`` (item 6 below).
+that the step left deep in each other are parted to ``slop`` (item 6 below).
 
 Why: the soft step finds its rows once a step, at the step's start (``rigid/collide.py``,
 with the margin of what each body can travel). Measured on benchmarks/rigid_fuzz.py's
@@ -17,7 +17,7 @@ or a neighbour crosses what its rows did not look for; and a rough box shot at 3
 What (after the substeps and the restitution):
 
 1. A body is fast, as Box2D's ``b2_isFast``, when the farthest point of its shape moved, or
-   moves at its end velocity, more than ``SAFETY`` × its smallest half-extent in the step:
+   moves at its end velocity, more than ``safety`` × its smallest half-extent in the step:
    ``|Δx| + θ·R`` or ``(|v| + |ω|·R)·dt``, R its bounding radius (0 for a sphere, whose
    surface a spin does not move). A slower body's rows, found with its travel, hold it.
 2. Its step is swept as Box2D sweeps it: from the pose of the step's start to the pose of its
@@ -32,31 +32,31 @@ What (after the substeps and the restitution):
    pose, and closes at most at L = max(0, −n·Δx) + θ·R along the sweep; so advancing by
    (s − target)/L never passes the target, and a pair that does not approach along n (a
    box sliding along the ground) is done at once.
-4. The target is ``SLOP`` (Box2D's linear slop: where a TOI stops a body), or for a pair that
-   starts the step within 2·``SLOP`` (touching: sliding, resting, pushed), ``SLOP`` less than
+4. The target is ``slop`` (Box2D's linear slop: where a TOI stops a body), or for a pair that
+   starts the step within 2·``slop`` (touching: sliding, resting, pushed), ``slop`` less than
    its separation then: a body that rests or slides on the ground is left alone, one whose
-   corner the step would drive deeper than ``SLOP`` past where it started is stopped first.
-   A body that starts the step more than ``SLOP`` inside a static body or a plane ends it no
+   corner the step would drive deeper than ``slop`` past where it started is stopped first.
+   A body that starts the step more than ``slop`` inside a static body or a plane ends it no
    deeper: at its end pose if that is no deeper, else where it began (what the rows did not
-   push out; a target ``SLOP`` deeper each step let it creep in, ``SLOP`` a step).
+   push out; a target ``slop`` deeper each step let it creep in, ``slop`` a step).
    A body that starts apart and that the rows stopped at the surface (its end pose no deeper
-   than ``SLOP`` along the impact's direction, found at the time of impact: a lower bound of
+   than ``slop`` along the impact's direction, found at the time of impact: a lower bound of
    its signed distance, and behind the face for a body that went through; and no point of
-   it closing ``SLOP`` along it in a step at its end velocity) is left there (``_held``):
-   moved back, it stayed ``SLOP`` short of the surface with the velocity the rows gave it
+   it closing ``slop`` along it in a step at its end velocity) is left there (``_held``):
+   moved back, it stayed ``slop`` short of the surface with the velocity the rows gave it
    (Cyclone's R10 ball at 300 m/s, no gravity: at rest 5 mm in front of the wall for ever).
 5. The body is put at the earliest time of impact's pose; its velocities are kept (Box2D's
    too; the spin in the body's frame): it arrives with them, and the next step's collision
    finds the contact within its travel and its row stops it.
 6. Then pairs of a fast body and another moving one, only where the step left them more than
-   ``SLOP`` inside each other and ``SLOP`` deeper than they started (what their rows did not
+   ``slop`` inside each other and ``slop`` deeper than they started (what their rows did not
    hold: a pair the rows caught ends touching, so a well-caught collision is never touched
    here). While they still move the way they came in, their relative motion is rewound
-   about their centre of mass, along their relative velocity, to where they are ``SLOP``
+   about their centre of mass, along their relative velocity, to where they are ``slop``
    apart (``_rewind``: momentum, angular momentum and energy kept to round-off); else (the
    rows turned them, or a spin took them in, which no translation undoes) both go back along
    their sweeps to the pair's time of impact, as against a static body; so do they where
-   the rewind would put one deeper than ``SLOP`` into a plane or a static body, and deeper
+   the rewind would put one deeper than ``slop`` into a plane or a static body, and deeper
    than it was (the relative velocity need not be the way a body came, as for one the ground
    bounced up under a heavy one). A body of a joint
    group is never moved alone (that opens its joints): a free body against a group goes back
@@ -97,7 +97,7 @@ step deep, 7 were a free body hitting a jointed one, which item 6 then skipped (
 25 g box at 48 m/s into a 10.5 kg jointed box, 14.4 cm); the other 12 a light jointed body in a
 wall or the ground (mass ratios in the group of 370 to 7e5): the joint's tree, solved exactly,
 drags it in against contact rows that carry only its own mass, and item 4's target let it creep
-in SLOP a step (seed 1264: a 2.8 g plank hinged on a 4 m arm to an 805 kg box, 9.3 cm). With
+in slop a step (seed 1264: a 2.8 g plank hinged on a 4 m arm to an 805 kg box, 9.3 cm). With
 item 6 on joint groups and item 4's floor (120 steps): seeds 1000–1199, 5 → 0 scenes deep;
 1200–1399, 8 → 2 (1263 jointed, 1279 joint-free); 300 steps: seeds 0–199's 143 jointed,
 7 → 1 (163), none gains; the 91 joint-free of 0–299 none deep, as before.
@@ -118,20 +118,19 @@ from ..rigid.islands import find_root
 from ..rigid.scalar import qmul, qrot, qrot_inv
 from ..rigid.shapes import BOX, SPHERE
 from ..rigid.sweep import _half_width
+from .settings import SolverSettings
 
-#: Box2D's ``B2_LINEAR_SLOP`` [m]: the separation a time of impact stops a body at, and how
-#: much deeper than at the step's start a touching pair may end it. (The collision's
-#: speculative margin, ``collide.SPECULATIVE_MARGIN``, is the same 5 mm: the stopped body is
-#: within it at the next step's start.)
-SLOP = 0.005
-#: Box2D's ``safetyFactor``: a body is fast when a point of it moves more than this fraction
-#: of its smallest half-extent in a step.
-SAFETY = 0.5
-#: Conservative-advancement iterations at most (``b2TimeOfImpact``'s 20); each lands short of
-#: the target, so stopping early is safe, only earlier.
+_DEFAULTS = SolverSettings()  # ``sweep_back``'s settings when none are given
+
+# ``slop`` (Box2D's ``B2_LINEAR_SLOP``, the separation a time of impact stops a body at) and
+# ``safety`` (Box2D's ``safetyFactor``) are the settings' ``continuous_slop`` and
+# ``continuous_safety`` (``SolverSettings``, ``World.settings``), passed down to the kernels.
+# The advancement stops within 0.25 × slop of its target (``b2TimeOfImpact``'s tolerance).
+
+#: Conservative-advancement iterations at most (``b2TimeOfImpact``'s 20): a guard of the root
+#: finder, not a tuning number; each iteration lands short of the target, so stopping early is
+#: safe, only earlier.
 ITERATIONS = 20
-#: The advancement stops within this of the target [m] (``b2TimeOfImpact``'s 0.25 × slop).
-TOLERANCE = 0.25 * SLOP
 
 
 @njit(cache=True, nogil=True)
@@ -281,15 +280,15 @@ def _gap_at(i, j, t, x_start, q_start, sweep, shape, size, plane_n, plane_d, axe
 
 @njit(cache=True, nogil=True)
 def _impact(i, j, limit, x_start, q_start, sweep, shape, size, plane_n, plane_d, axes_i,
-            axes_j):
+            axes_j, slop):
     """``_impact_normal``'s fraction of the step alone."""
     return _impact_normal(i, j, limit, x_start, q_start, sweep, shape, size, plane_n, plane_d,
-                          axes_i, axes_j)[0]
+                          axes_i, axes_j, slop)[0]
 
 
 @njit(cache=True, nogil=True)
 def _impact_normal(i, j, limit, x_start, q_start, sweep, shape, size, plane_n, plane_d, axes_i,
-                   axes_j):
+                   axes_j, slop):
     """The fraction of the step (< ``limit``) at which body i's sweep first brings it to the
     target separation from body j's sweep (a static body's is still) or, for j < 0, from
     plane −1 − j (module docstring); ``limit`` if it does not. Returns (that fraction, the
@@ -310,6 +309,7 @@ def _impact_normal(i, j, limit, x_start, q_start, sweep, shape, size, plane_n, p
         spin += wj[6] * wj[7]
     else:
         ex, ey, ez = wi[0], wi[1], wi[2]
+    tolerance = 0.25 * slop
     t = 0.0
     target = 0.0
     start = 0.0
@@ -327,15 +327,15 @@ def _impact_normal(i, j, limit, x_start, q_start, sweep, shape, size, plane_n, p
                                         axes_i, axes_j)
         if it == 0:
             start = gap
-            target = min(SLOP, gap - SLOP)
-            if gap < -SLOP and (j < 0 or (sweep[j, 9] == 0.0 and sweep[j, 6] == 0.0)):
-                # deeper than SLOP in a static body or a plane already (what a joint pulls in
+            target = min(slop, gap - slop)
+            if gap < -slop and (j < 0 or (sweep[j, 9] == 0.0 and sweep[j, 6] == 0.0)):
+                # deeper than slop in a static body or a plane already (what a joint pulls in
                 # against the rows): kept where it began unless it ends no deeper (a target
-                # SLOP deeper each step let it creep in, SLOP a step: fuzz seed 1264)
+                # slop deeper each step let it creep in, slop a step: fuzz seed 1264)
                 end = _gap_at(i, j, limit, x_start, q_start, sweep, shape, size, plane_n,
                               plane_d, axes_i, axes_j)
                 return (limit if end >= gap else 0.0), start, nx, ny, nz
-        elif gap <= target + TOLERANCE or it == ITERATIONS:
+        elif gap <= target + tolerance or it == ITERATIONS:
             return t, start, nx, ny, nz
         rate = max(0.0, -(nx * ex + ny * ey + nz * ez)) + spin
         if rate <= 0.0:
@@ -348,27 +348,27 @@ def _impact_normal(i, j, limit, x_start, q_start, sweep, shape, size, plane_n, p
 
 @njit(cache=True, nogil=True)
 def _held(i, j, start, nx, ny, nz, pos, quat, vel, ang, shape, size, sweep, plane_d, dt,
-          axes_i, axes_j):
+          axes_i, axes_j, slop):
     """Whether body i, apart from static body j (or plane −1 − j) at the step's start (by
-    2·``SLOP`` or more: item 4's target is then ``SLOP``), ends the step held against it:
+    2·``slop`` or more: item 4's target is then ``slop``), ends the step held against it:
     its gap from j along the impact's direction n (from j towards i), a lower bound of their
-    signed distance (a separating axis), is no deeper than ``SLOP``, and at its end velocity
-    no point of it comes ``SLOP`` closer along n in a step (−v·n + |ω|·R, R as in item 3).
+    signed distance (a separating axis), is no deeper than ``slop``, and at its end velocity
+    no point of it comes ``slop`` closer along n in a step (−v·n + |ω|·R, R as in item 3).
     The rows then stopped it at the surface (a speculative point caught it), and moving it
-    back would leave it ``SLOP`` short of the surface, with the velocity the rows gave it (a
+    back would leave it ``slop`` short of the surface, with the velocity the rows gave it (a
     ball shot at a wall without gravity stopped 5 mm in front of it for ever); a body that
-    went through or deep is more than ``SLOP`` behind j's face along n. One still closing
-    was not stopped: left there, its next step (touching, item 4) may end ``SLOP`` deeper
+    went through or deep is more than ``slop`` behind j's face along n. One still closing
+    was not stopped: left there, its next step (touching, item 4) may end ``slop`` deeper
     (the thin wall's tumbled box, 15° at 50 m/s, ended its first step 2.4 mm deep spinning
     at 30 rad/s, its second 6.8 mm); moved back, it arrives again, as before. A pair touching
     at the start keeps item 4's rule (a spinning box's corner, which no row follows, is
-    stopped where it would go ``SLOP`` deeper than it began: left to end each step that much
+    stopped where it would go ``slop`` deeper than it began: left to end each step that much
     deeper, seed 79's box crept 4 mm a step into a wall)."""
-    if start < 2.0 * SLOP:
+    if start < 2.0 * slop:
         return False
     spin = math.sqrt(ang[i, 0] ** 2 + ang[i, 1] ** 2 + ang[i, 2] ** 2)
     closing = -(vel[i, 0] * nx + vel[i, 1] * ny + vel[i, 2] * nz) + spin * sweep[i, 7]
-    if closing * dt > SLOP:
+    if closing * dt > slop:
         return False
     if j < 0:
         s = -1 - j
@@ -383,12 +383,12 @@ def _held(i, j, start, nx, ny, nz, pos, quat, vel, ang, shape, size, sweep, plan
             else:
                 _box_axes(quat[k, 0], quat[k, 1], quat[k, 2], quat[k, 3], axes)
                 end -= _half_width(axes, size[k], nx, ny, nz)
-    return end >= -SLOP
+    return end >= -slop
 
 
 @njit(cache=True, nogil=True)
 def _impact_still(i, j, x_start, q_start, sweep, shape, size, plane_n, plane_d, axes_i, axes_j,
-                  pos, quat):
+                  pos, quat, slop):
     """``_impact`` of body i's sweep against body j held where the step left it (its row of
     the sweep and its start pose stood in for that while it runs, then put back)."""
     row = sweep[j].copy()
@@ -399,7 +399,7 @@ def _impact_still(i, j, x_start, q_start, sweep, shape, size, plane_n, plane_d, 
     x_start[j] = pos[j]
     q_start[j] = quat[j]
     t = _impact(i, j, 1.0, x_start, q_start, sweep, shape, size, plane_n, plane_d, axes_i,
-                axes_j)
+                axes_j, slop)
     sweep[j] = row
     x_start[j] = x0
     q_start[j] = q0
@@ -407,17 +407,17 @@ def _impact_still(i, j, x_start, q_start, sweep, shape, size, plane_n, plane_d, 
 
 
 @njit(cache=True, nogil=True)
-def _pair_deep(i, j, pos, quat, shape, size, x_start, q_start, axes_i, axes_j):
-    """Whether the step left bodies i and j more than ``SLOP`` inside each other and more than
-    ``SLOP`` deeper than they started: what their rows did not hold (a bounce the rows caught
+def _pair_deep(i, j, pos, quat, shape, size, x_start, q_start, axes_i, axes_j, slop):
+    """Whether the step left bodies i and j more than ``slop`` inside each other and more than
+    ``slop`` deeper than they started: what their rows did not hold (a bounce the rows caught
     ends touching; an overlap they push out ends no deeper)."""
     end, _, _, _ = _pair_gap(shape[i], size[i], pos[i], quat[i], shape[j], size[j], pos[j],
                              quat[j], axes_i, axes_j)
-    if end >= -SLOP:
+    if end >= -slop:
         return False
     start, _, _, _ = _pair_gap(shape[i], size[i], x_start[i], q_start[i], shape[j], size[j],
                                x_start[j], q_start[j], axes_i, axes_j)
-    return end < start - SLOP
+    return end < start - slop
 
 
 @njit(cache=True, nogil=True)
@@ -468,14 +468,14 @@ def _fixed_gap(k, pos, quat, inv_mass, solid, shape, size, sweep, plane_n, plane
 
 
 @njit(cache=True, nogil=True)
-def _rewind(i, j, pos, quat, rel, share, shape, size, x_start, dt, axes_i, axes_j):
+def _rewind(i, j, pos, quat, rel, share, shape, size, x_start, dt, axes_i, axes_j, slop):
     """Free moving bodies i and j that the step left deep (``_pair_deep``), if they still move
     the way they came in: how far back (a time in [0, dt]) their relative motion, at their
-    relative velocity ``rel``, is to be rewound to where they are ``SLOP`` apart, about their
+    relative velocity ``rel``, is to be rewound to where they are ``slop`` apart, about their
     centre of mass: i moves by −share·back·rel, j by (1 − share)·back·rel, ``share`` i's
     inverse mass over both's. Returns −1 where that does not part them: they do not
     approach along their travel (the rows turned them), or rewinding a whole step leaves them
-    closer than ``SLOP`` (the turn of a spinning body took them in, which only the sweep
+    closer than ``slop`` (the turn of a spinning body took them in, which only the sweep
     undoes).
 
     Why along the relative velocity: a displacement δ_i = w_i·D, δ_j = −w_j·D (w = 1/m over
@@ -492,8 +492,9 @@ def _rewind(i, j, pos, quat, rel, share, shape, size, x_start, dt, axes_i, axes_
         return -1.0  # the rows turned it: not moving on the way it came in
     wi = share
     # u over [0, 1]: from the pose rewound by a whole step (u = 0) to the step's end (u = 1);
-    # conservative advancement from u = 0 to where the gap first closes to SLOP (translation
+    # conservative advancement from u = 0 to where the gap first closes to slop (translation
     # only: the gap along n closes at most at −n·rel·dt over u)
+    tolerance = 0.25 * slop
     pi = np.empty(3)
     pj = np.empty(3)
     u = 0.0
@@ -506,26 +507,27 @@ def _rewind(i, j, pos, quat, rel, share, shape, size, x_start, dt, axes_i, axes_
             pj[k] = pos[j, k] + (1.0 - wi) * back * r
         gap, nx, ny, nz = _pair_gap(shape[i], size[i], pi, quat[i], shape[j], size[j], pj,
                                     quat[j], axes_i, axes_j)
-        if it == 0 and gap < SLOP:
+        if it == 0 and gap < slop:
             return -1.0  # a step's travel back does not part them: a turn took them in
-        if gap <= SLOP + TOLERANCE or it == ITERATIONS:
+        if gap <= slop + tolerance or it == ITERATIONS:
             break
         rate = -(nx * rx + ny * ry + nz * rz) * dt
         if rate <= 0.0:
             break  # the rest of the way does not close it along n: stop here (apart)
-        u = min(1.0, u + (gap - SLOP) / rate)
+        u = min(1.0, u + (gap - slop) / rate)
     return back
 
 
 @njit(cache=True, nogil=True)
 def clamp(pos, quat, vel, ang, inv_mass, inv_inertia, inv_i, shape, size, awake, x_start,
-          q_start, dt, plane_n, plane_d, exclude, anchored):
+          q_start, dt, plane_n, plane_d, exclude, anchored, slop, safety):
     """Move every fast awake body back to its earliest time of impact with a static body or a
     plane this step, then part the pairs of a fast body and a moving one that ended it deep
     (module docstring); ``x_start``, ``q_start``: the poses of the step's start;
     ``exclude``: sorted keys lo·N + hi of jointed pairs (not swept against each other, and moved
     back together); ``anchored``: the bodies a joint holds to a world point. Returns how many
-    bodies it moved."""
+    bodies it moved. ``slop``, ``safety``: the settings' ``continuous_slop``,
+    ``continuous_safety``."""
     nb = pos.shape[0]
     axes_i = np.empty((3, 3))
     axes_j = np.empty((3, 3))
@@ -555,7 +557,7 @@ def clamp(pos, quat, vel, ang, inv_mass, inv_inertia, inv_i, shape, size, awake,
         moved = w[9] + w[6] * w[7]
         speed = math.sqrt(vel[k, 0] ** 2 + vel[k, 1] ** 2 + vel[k, 2] ** 2)
         spin = math.sqrt(ang[k, 0] ** 2 + ang[k, 1] ** 2 + ang[k, 2] ** 2)
-        fast[k] = moved > 0.0 and max(moved, (speed + spin * w[7]) * dt) > SAFETY * smallest
+        fast[k] = moved > 0.0 and max(moved, (speed + spin * w[7]) * dt) > safety * smallest
     best = np.ones(nb)
     for i in range(nb):
         if not fast[i]:
@@ -565,12 +567,14 @@ def clamp(pos, quat, vel, ang, inv_mass, inv_inertia, inv_i, shape, size, awake,
         for s in range(plane_n.shape[0]):  # the planes its swept bounding sphere comes near
             n0 = x0[0] * plane_n[s, 0] + x0[1] * plane_n[s, 1] + x0[2] * plane_n[s, 2]
             n1 = pos[i, 0] * plane_n[s, 0] + pos[i, 1] * plane_n[s, 1] + pos[i, 2] * plane_n[s, 2]
-            if min(n0, n1) - plane_d[s] - wi[8] > SLOP:
+            if min(n0, n1) - plane_d[s] - wi[8] > slop:
                 continue
             t, start, nx, ny, nz = _impact_normal(i, -1 - s, best[i], x_start, q_start, sweep,
-                                                  shape, size, plane_n, plane_d, axes_i, axes_j)
+                                                  shape, size, plane_n, plane_d, axes_i, axes_j,
+                                                  slop)
             if t < best[i] and not _held(i, -1 - s, start, nx, ny, nz, pos, quat, vel, ang,
-                                         shape, size, sweep, plane_d, dt, axes_i, axes_j):
+                                         shape, size, sweep, plane_d, dt, axes_i, axes_j,
+                                         slop):
                 best[i] = t
         for j in range(nb):
             if inv_mass[j] != 0.0 or not solid[j]:  # static bodies only (module docstring)
@@ -584,12 +588,13 @@ def clamp(pos, quat, vel, ang, inv_mass, inv_inertia, inv_i, shape, size, awake,
             cx = x0[0] + 0.5 * wi[0] - pos[j, 0]
             cy = x0[1] + 0.5 * wi[1] - pos[j, 1]
             cz = x0[2] + 0.5 * wi[2] - pos[j, 2]
-            if math.sqrt(cx * cx + cy * cy + cz * cz) - 0.5 * wi[9] - wi[8] - sweep[j, 8] > SLOP:
+            if math.sqrt(cx * cx + cy * cy + cz * cz) - 0.5 * wi[9] - wi[8] - sweep[j, 8] > slop:
                 continue
             t, start, nx, ny, nz = _impact_normal(i, j, best[i], x_start, q_start, sweep,
-                                                  shape, size, plane_n, plane_d, axes_i, axes_j)
+                                                  shape, size, plane_n, plane_d, axes_i, axes_j,
+                                                  slop)
             if t < best[i] and not _held(i, j, start, nx, ny, nz, pos, quat, vel, ang, shape,
-                                         size, sweep, plane_d, dt, axes_i, axes_j):
+                                         size, sweep, plane_d, dt, axes_i, axes_j, slop):
                 best[i] = t
     # bodies held together by joints go back together, to the earliest impact among them: a
     # bone moved back alone opened its joints (the ragdoll demo with the soft step: 14-46 mm)
@@ -639,20 +644,21 @@ def clamp(pos, quat, vel, ang, inv_mass, inv_inertia, inv_i, shape, size, awake,
             cx, cy, cz = pos[i, 0] - pos[j, 0], pos[i, 1] - pos[j, 1], pos[i, 2] - pos[j, 2]
             if math.sqrt(cx * cx + cy * cy + cz * cz) > sweep[i, 8] + sweep[j, 8]:
                 continue  # their bounding spheres apart
-            if not _pair_deep(i, j, pos, quat, shape, size, x_start, q_start, axes_i, axes_j):
+            if not _pair_deep(i, j, pos, quat, shape, size, x_start, q_start, axes_i, axes_j,
+                              slop):
                 continue
             if members[ri] == 1 and members[rj] == 1:
                 share = inv_mass[i] / (inv_mass[i] + inv_mass[j])
                 for u in range(3):
                     rel[u] = vel[i, u] - vel[j, u]
                 back = _rewind(i, j, pos, quat, rel, share, shape, size, x_start, dt, axes_i,
-                               axes_j)
+                               axes_j, slop)
                 if back >= 0.0:
                     # a rewind moves each body along the pair's relative velocity, which need
                     # not be the way it came: a body the ground bounced up while a heavy one
                     # fell on it went back down through the ground (seed 278: a 74 kg box
                     # under a 1630 kg sphere, 5.6 cm above the ground, left 2.7 cm in it); one
-                    # it would put deeper than SLOP into a plane or a static body, and deeper
+                    # it would put deeper than slop into a plane or a static body, and deeper
                     # than it was, goes back along its sweep (below) instead
                     before_i = _fixed_gap(i, pos, quat, inv_mass, solid, shape, size, sweep,
                                           plane_n, plane_d, axes_i, axes_j)
@@ -667,8 +673,8 @@ def clamp(pos, quat, vel, ang, inv_mass, inv_inertia, inv_i, shape, size, awake,
                                          plane_n, plane_d, axes_i, axes_j)
                     after_j = _fixed_gap(j, pos, quat, inv_mass, solid, shape, size, sweep,
                                          plane_n, plane_d, axes_i, axes_j)
-                    if ((after_i >= -SLOP or after_i >= before_i)
-                            and (after_j >= -SLOP or after_j >= before_j)):
+                    if ((after_i >= -slop or after_i >= before_i)
+                            and (after_j >= -slop or after_j >= before_j)):
                         count += 2
                         continue
                     pos[i] = pi_end
@@ -680,11 +686,11 @@ def clamp(pos, quat, vel, ang, inv_mass, inv_inertia, inv_i, shape, size, awake,
                 # 2.5 cm, the chord of its turn: seed 1121)
                 f, o = (i, j) if members[ri] == 1 else (j, i)
                 t = _impact_still(f, o, x_start, q_start, sweep, shape, size, plane_n, plane_d,
-                                  axes_i, axes_j, pos, quat)
+                                  axes_i, axes_j, pos, quat, slop)
                 pf, qf = _pose(f, t, x_start, q_start, sweep)
                 gap, _, _, _ = _pair_gap(shape[f], size[f], pf, qf, shape[o], size[o], pos[o],
                                          quat[o], axes_i, axes_j)
-                if gap >= -SLOP:  # (else its whole sweep is in the group's body: below)
+                if gap >= -slop:  # (else its whole sweep is in the group's body: below)
                     if t < best[f]:
                         best[f] = t
                         _move_back(f, t, pos, quat, ang, inv_inertia, inv_i, x_start,
@@ -692,7 +698,7 @@ def clamp(pos, quat, vel, ang, inv_mass, inv_inertia, inv_i, shape, size, awake,
                         count += 1
                     continue
             t = _impact(i, j, 1.0, x_start, q_start, sweep, shape, size, plane_n, plane_d,
-                        axes_i, axes_j)
+                        axes_i, axes_j, slop)
             for k in range(nb):  # both units, each body along its sweep to the impact
                 rk = find_root(root, k)
                 if ((rk == ri or rk == rj) and solid[k] and inv_mass[k] != 0.0 and awake[k]
@@ -705,10 +711,12 @@ def clamp(pos, quat, vel, ang, inv_mass, inv_inertia, inv_i, shape, size, awake,
 
 
 def sweep_back(bodies, planes, exclude, x_start: np.ndarray, q_start: np.ndarray,
-               dt: float, anchored=None) -> int:
+               dt: float, anchored=None, settings: SolverSettings | None = None) -> int:
     """``clamp`` on a ``Bodies`` and the world's ``Plane``s (``exclude``: the jointed pairs'
-    keys, ``anchored``: the bodies jointed to a world point; None for none); returns the
+    keys, ``anchored``: the bodies jointed to a world point; None for none) with the slop and
+    safety factor of ``settings`` (``World.settings``; the defaults when None); returns the
     bodies moved."""
+    st = _DEFAULTS if settings is None else settings
     b = bodies
     n = len(planes)
     plane_n = np.empty((n, 3))
@@ -721,4 +729,5 @@ def sweep_back(bodies, planes, exclude, x_start: np.ndarray, q_start: np.ndarray
     anchored = np.zeros(0, np.int64) if anchored is None else np.asarray(anchored, np.int64)
     return int(clamp(b.position, b.orientation, b.velocity, b.angular_velocity, b.inv_mass,
                      b.inv_inertia, b.inv_inertia_world, b.shape, b.size, b.awake, x_start,
-                     q_start, dt, plane_n, plane_d, exclude, anchored))
+                     q_start, dt, plane_n, plane_d, exclude, anchored, st.continuous_slop,
+                     st.continuous_safety))

@@ -1,8 +1,9 @@
 """The body stage as Box2D v3's soft step (Catto, "Solver2D", 2024; box2d ``src/solver.c``,
 ``src/contact_solver.c``; rigid-notes §2 and §4).
 
-Collision runs once per step; the rows it found are then solved over ``SUBSTEPS`` substeps of
-h = dt / ``SUBSTEPS``, each in the stage order of Box2D v3:
+Collision runs once per step; the rows it found are then solved over ``soft_substeps`` substeps
+of h = dt / ``soft_substeps``, each in the stage order of Box2D v3 (the tuning numbers named
+here are ``SolverSettings`` fields, ``World.settings``):
 
 1. kick — v += h·(g + F/m), ω += h·I⁻¹τ (Box2D's ``b2IntegrateVelocitiesTask``; ``kick``).
    The force generators (springs, buoyancy, aerodynamics) are found again before each
@@ -15,8 +16,8 @@ h = dt / ``SUBSTEPS``, each in the stage order of Box2D v3:
 2. warm start — every point's accumulated normal impulse and every manifold's friction and
    twist (Catto 2006), again each substep;
 3. solve — one Gauss–Seidel pass with **soft** normal rows (``soft``: a spring–damper of
-   ``CONTACT_HERTZ`` and damping ratio ``DAMPING_RATIO``, twice as stiff against scenery,
-   its push-out capped at ``CONTACT_SPEED``), then the friction block at the manifold's
+   ``contact_hertz`` and damping ratio ``contact_damping_ratio``, twice as stiff against
+   scenery, its push-out capped at ``contact_speed``), then the friction block at the manifold's
    friction centre and its twist (``body_manifolds``);
    Before the drift, friction is brought into the cone of the solve's normal impulses
    (``soft_energy.friction_cone``: a warm start of friction on points that now separate is
@@ -91,42 +92,19 @@ from . import body_passes as bp
 from . import joint_friction, joint_soft, soft_energy
 from .body_stages import _arm_mass
 from .kernels import bounce_target
+from .settings import SolverSettings
 
-# Box2D v3's defaults (``src/types.c``, ``src/solver.c``); the lead moves them to SolverSettings.
-#: Substeps of one body step (Box2D's ``subStepCount``).
-SUBSTEPS = 4
-#: Stiffness of a contact as a frequency [Hz], capped at ``HERTZ_CAP`` × the substep rate
-#: and doubled against scenery (Box2D's static softness). Box2D's 30 Hz (cap 0.25) is too
-#: soft for a tower of unit boxes: a column of rocking springs k = m_n·ω² per corner buckles
-#: under its own weight above ~15 m at 30 Hz, ~24 m at 60 Hz, ~61 m at 240 Hz (measured, 20 s,
-#: sleep off: 20 boxes fall at 30 Hz, 30 boxes at 60 Hz; at 240 Hz 30 boxes drift 1.3 mm).
-CONTACT_HERTZ = 240.0
-HERTZ_CAP = 1.0
-#: Damping ratio of the contact spring (Box2D's ``contactDampingRatio``): heavily overdamped.
-DAMPING_RATIO = 10.0
-#: Largest speed [m/s] at which the soft rows push an overlap out (Box2D's ``contactSpeed``).
-CONTACT_SPEED = 3.0
+_DEFAULTS = SolverSettings()  # the entry points' settings when none are given
+
+# The tuning numbers (substeps, the contacts' stiffness, damping ratio and push-out speed, the
+# pass caps, tolerance and over-relaxation) are ``SolverSettings`` fields, read from the
+# ``settings`` each entry point is given (Box2D v3's defaults, ``src/types.c``; what was measured
+# when each was chosen is in their docstring).
+
 #: Whether the biased pass solves friction too (Box2D v3.0), or only the relax pass does
-#: (Box2D v3.1: friction is not fought by the push-out).
+#: (Box2D v3.1: friction is not fought by the push-out). A choice of method, not a tuning
+#: number: ``soft_energy.friction_cone`` relies on the biased pass leaving friction alone.
 FRICTION_IN_SOLVE = False
-#: Passes of the solve and of the relax stage per substep at most (Box2D: 1 and 1); they
-#: stop once no row changes a velocity by more than ``TOLERANCE`` [m/s]. Repeated soft
-#: passes converge to the soft rows' own solution. One pass each leaves a tall stack's
-#: Gauss–Seidel order in it (measured, 20 s, sleep off, 240 Hz: 20 boxes fall with 1 + 1,
-#: drift 0.6 mm with up to 30 + 30; the 210-box pyramid 0.6 mm, the 1000-box pit 0.44 mm/s).
-SOLVE_PASSES = 30
-RELAX_PASSES = 30
-TOLERANCE = 1e-5
-#: Over-relaxation of the soft solve's normal rows (projected SOR; Erleben's PSOR): each row
-#: moves OVER × its Gauss–Seidel step. The soft rows' matrix K + γ is positive definite, so
-#: PSOR converges for 0 < OVER < 2, and a stack's slow vertical mode, which plain Gauss–Seidel
-#: takes O(N²) passes to settle, takes far fewer. Measured, sleep off, passes a step (solve and
-#: relax, 4 substeps) over t = 3–4 s with solve and relax both over-relaxed by 1.0 / 1.3 / 1.5 /
-#: 1.8: the 10-box tower 83 / 59 / 48 / 77, the 210-box pyramid 190 / 155 / 54 / 87 (apex 0.61
-#: / 0.65 / 0.79 / 2.5 mm). The relax rows are hard (K alone, singular for a face's 4 coplanar
-#: points) and keep plain Gauss–Seidel: over-relaxed too, a face-down box bounced 6 % too high
-#: (0.266·h). The solve alone at 1.5 (this): tower 32, pyramid 40 passes (apex 0.59 mm).
-OVER = 1.5
 
 
 def softness(hertz: float, zeta: float, h: float) -> tuple[float, float, float]:
@@ -142,17 +120,18 @@ def softness(hertz: float, zeta: float, h: float) -> tuple[float, float, float]:
 _SOFTNESS: list = [None]  # the last (inputs, soft, static) of ``_softness_rows``
 
 
-def _softness_rows(h: float) -> tuple[np.ndarray, np.ndarray]:
-    """(soft, static): the contact rows' softness (``softness``, then ``CONTACT_SPEED``)
+def _softness_rows(h: float, st: SolverSettings) -> tuple[np.ndarray, np.ndarray]:
+    """(soft, static): the contact rows' softness (``softness``, then ``contact_speed``)
     against bodies and against scenery for a substep h, made again only when h or a
-    constant changes (a tiny world's step paid for building them every step)."""
-    key = (h, CONTACT_HERTZ, HERTZ_CAP, DAMPING_RATIO, CONTACT_SPEED)
+    setting changes (a tiny world's step paid for building them every step)."""
+    key = (h, st.contact_hertz, st.contact_hertz_cap, st.contact_damping_ratio,
+           st.contact_speed)
     last = _SOFTNESS[0]
     if last is not None and last[0] == key:
         return last[1], last[2]
-    hertz = min(CONTACT_HERTZ, HERTZ_CAP * (1.0 / h))
-    soft = np.array((*softness(hertz, DAMPING_RATIO, h), CONTACT_SPEED))
-    static = np.array((*softness(2.0 * hertz, DAMPING_RATIO, h), CONTACT_SPEED))
+    hertz = min(st.contact_hertz, st.contact_hertz_cap * (1.0 / h))
+    soft = np.array((*softness(hertz, st.contact_damping_ratio, h), st.contact_speed))
+    static = np.array((*softness(2.0 * hertz, st.contact_damping_ratio, h), st.contact_speed))
     _SOFTNESS[0] = (key, soft, static)
     return soft, static
 
@@ -308,10 +287,13 @@ def kick(nb, vel, ang, force, torque, start, pos, turn, inv_mass, inv_inertia, i
 @njit(cache=True, nogil=True)
 def soft_pass(start, ca, cb, n, t1, t2, fmu, radius, mass_n, mass_t1, mass_t2, mass_tw, sep,
               inv_mass, vel, ang, impulse, peak, relv, gap, jt1, jt2, jtw, arm, farm, inv_h,
-              use_bias, friction, soft, static):
+              use_bias, friction, soft, static, relaxation):
     """One Gauss–Seidel pass over the manifolds: each point's normal row (soft with
     ``use_bias``: ``soft``/``static`` = (bias rate, mass scale, impulse scale, push-out cap)
-    for body pairs and against scenery; a gap s > 0 closes by s/h at most), then the
+    for body pairs and against scenery, each row moving ``relaxation`` × its Gauss–Seidel step
+    (projected SOR; the relax pass's rows are hard, singular for a face's 4 coplanar points,
+    and stay plain: over-relaxed too, a face-down box bounced 6 % too high); a gap s > 0
+    closes by s/h at most), then the
     twist and the tangents at the friction centre within μ·Λ (with ``friction``). ``peak``
     keeps each point's largest accumulated impulse this step; ``relv`` its normal velocity
     and ``gap`` its separation (≥ 0) until it first pushes (the restitution's v₀). Returns
@@ -327,7 +309,7 @@ def soft_pass(start, ca, cb, n, t1, t2, fmu, radius, mass_n, mass_t1, mass_t2, m
         wb = inv_mass[b] if b >= 0 else 0.0
         nx, ny, nz = n[s0, 0], n[s0, 1], n[s0, 2]
         par = soft if b >= 0 else static
-        over = OVER if use_bias else 1.0
+        over = relaxation if use_bias else 1.0
         total = 0.0
         for c in range(s0, s1):
             if mass_n[c] == 0.0:
@@ -420,7 +402,7 @@ def soft_pass(start, ca, cb, n, t1, t2, fmu, radius, mass_n, mass_t1, mass_t2, m
 @njit(cache=True, nogil=True)
 def soft_passes(start, ca, cb, n, t1, t2, fmu, radius, mass_n, mass_t1, mass_t2, mass_tw, sep,
                 inv_mass, vel, ang, impulse, peak, relv, gap, jt1, jt2, jtw, arm, farm, inv_h,
-                use_bias, friction, soft, static, max_passes, tolerance):
+                use_bias, friction, soft, static, max_passes, tolerance, relaxation):
     """``soft_pass`` until no row changes a velocity by more than ``tolerance`` [m/s], at
     most ``max_passes``; returns the passes run. Repeating a soft pass converges to the
     soft rows' own solution (v + bias + γλ = 0 on every pushing row), not a stiffer one."""
@@ -429,7 +411,8 @@ def soft_passes(start, ca, cb, n, t1, t2, fmu, radius, mass_n, mass_t1, mass_t2,
         passes += 1
         if soft_pass(start, ca, cb, n, t1, t2, fmu, radius, mass_n, mass_t1, mass_t2,
                      mass_tw, sep, inv_mass, vel, ang, impulse, peak, relv, gap, jt1, jt2, jtw,
-                     arm, farm, inv_h, use_bias, friction, soft, static) <= tolerance:
+                     arm, farm, inv_h, use_bias, friction, soft, static,
+                     relaxation) <= tolerance:
             break
     return passes
 
@@ -553,19 +536,20 @@ def _refresh(b, c: BodyContacts, r: _Rows) -> float:
 
 
 def _pass(b, c: BodyContacts, r: _Rows, inv_h: float, use_bias: bool, soft, static,
-          max_passes: int = 1) -> int:
+          st: SolverSettings, max_passes: int = 1) -> int:
     friction = FRICTION_IN_SOLVE or not use_bias
     return int(soft_passes(
         r.start, c.a, c.b, c.normal, r.t1, r.t2, r.fmu, r.radius, r.mass_n, r.mass_t1,
         r.mass_t2, r.mass_tw, r.sep, b.inv_mass, b.velocity, b.angular_velocity, r.impulse,
         r.peak, r.relv, r.gap, r.jt1, r.jt2, r.jtw, r.arm, r.farm, inv_h, use_bias, friction,
-        soft, static, max_passes, TOLERANCE))
+        soft, static, max_passes, st.soft_tolerance, st.soft_relaxation))
 
 
 @njit(cache=True, nogil=True)
 def contact_step(nb, substeps, h, gravity, soft, static, threshold, pos, quat, vel, ang,
                  inv_mass, inv_inertia, inv_i, awake, lin_d, ang_d, acc, ca, cb, n, r0a, r0b,
-                 depth0, mu, e, impulse, kept, shape, total, force, torque):
+                 depth0, mu, e, impulse, kept, shape, total, force, torque, solve_passes,
+                 relax_passes, tolerance, relaxation):
     """The whole soft step of a world without joints in one compiled call (issue 26: a small
     world pays no Python per substep; measured, the 10-box tower's stage made 38 kernel calls
     a step from Python). ``impulse`` (M,) and ``kept`` (M, 3) come in with the recalled warm
@@ -575,6 +559,8 @@ def contact_step(nb, substeps, h, gravity, soft, static, threshold, pos, quat, v
     loop.
 
     ``shape`` (``nb``,) the bodies' shapes: which points' anchors do not turn (``_round``).
+    ``solve_passes``, ``relax_passes``, ``tolerance``, ``relaxation``: the settings'
+    ``soft_solve_passes``, ``soft_relax_passes``, ``soft_tolerance``, ``soft_relaxation``.
 
     Returns (passes, deepest overlap, error, body): error 1 is a spin that is not finite after
     a kick, 2 a body that is not finite after a drift, 3 a row whose velocity the step left
@@ -666,7 +652,8 @@ def contact_step(nb, substeps, h, gravity, soft, static, threshold, pos, quat, v
             passes += soft_passes(start, ca, cb, n, t1, t2, fmu, radius, mass_n, mass_t1,
                                   mass_t2, mass_tw, sep, inv_mass, vel, ang, impulse, peak,
                                   relv, gap, jt1, jt2, jtw, arm, farm, inv_h, True,
-                                  FRICTION_IN_SOLVE, soft, static, SOLVE_PASSES, TOLERANCE)
+                                  FRICTION_IN_SOLVE, soft, static, solve_passes, tolerance,
+                                  relaxation)
             # friction within the solve's cone, in this pose (``soft_energy``)
             soft_energy.friction_cone(start, ca, cb, n, t1, t2, fmu, radius, mass_n, inv_mass,
                                       vel, ang, impulse, jt1, jt2, jtw, farm)
@@ -680,7 +667,7 @@ def contact_step(nb, substeps, h, gravity, soft, static, threshold, pos, quat, v
             passes += soft_passes(start, ca, cb, n, t1, t2, fmu, radius, mass_n, mass_t1,
                                   mass_t2, mass_tw, sep, inv_mass, vel, ang, impulse, peak,
                                   relv, gap, jt1, jt2, jtw, arm, farm, inv_h, False, True,
-                                  soft, static, RELAX_PASSES, TOLERANCE)
+                                  soft, static, relax_passes, tolerance, relaxation)
             soft_energy.limit_scenery(alone, start_energy, vel, ang, quat, inv_mass,
                                       inv_inertia)
             if islands:
@@ -699,7 +686,7 @@ def contact_step(nb, substeps, h, gravity, soft, static, threshold, pos, quat, v
             w0 = ang.copy()
             e0 = _kinetic_energy(vel, ang, quat, inv_mass, inv_inertia)
         restitution(start, ca, cb, n, e, along, approach, relv, gap, peak, mass_n, inv_mass,
-                    vel, ang, impulse, arm, h, threshold, resting, RELAX_PASSES, TOLERANCE)
+                    vel, ang, impulse, arm, h, threshold, resting, relax_passes, tolerance)
         if bouncy:
             soft_energy.limit_bounce(e0, absorbed, v0, w0, held, vel, ang, impulse, quat,
                                      inv_mass, inv_inertia)
@@ -722,7 +709,7 @@ def _round(v, b, c: BodyContacts) -> tuple[np.ndarray, np.ndarray]:
 
 
 def _contact_step(v, b, c: BodyContacts, acceleration, history: ImpulseHistory, h: float,
-                  threshold: float, gravity, substeps: int, soft, static, out: SoftRows):
+                  threshold: float, gravity, st: SolverSettings, soft, static, out: SoftRows):
     """``step`` without joints: recall, ``contact_step``, keep."""
     impulse = np.empty(c.count)
     kept = np.empty((c.count, 3))
@@ -731,11 +718,12 @@ def _contact_step(v, b, c: BodyContacts, acceleration, history: ImpulseHistory, 
     else:
         history.clear()
     passes, deepest, error, bad = contact_step(
-        b.count, substeps, h, gravity, soft, static, threshold, v.position, v.orientation,
-        v.velocity, v.angular_velocity, v.inv_mass, v.inv_inertia, v.inv_inertia_world,
-        v.awake, b.linear_damping, b.angular_damping, acceleration, c.a, c.b, c.normal, c.r_a,
-        c.r_b, c.depth, c.friction, c.restitution, impulse, kept, b.shape, c.impulse,
-        b.force, b.torque)
+        b.count, st.soft_substeps, h, gravity, soft, static, threshold, v.position,
+        v.orientation, v.velocity, v.angular_velocity, v.inv_mass, v.inv_inertia,
+        v.inv_inertia_world, v.awake, b.linear_damping, b.angular_damping, acceleration, c.a,
+        c.b, c.normal, c.r_a, c.r_b, c.depth, c.friction, c.restitution, impulse, kept,
+        b.shape, c.impulse, b.force, b.torque, st.soft_solve_passes, st.soft_relax_passes,
+        st.soft_tolerance, st.soft_relaxation)
     if error == 1:
         from ..rigid.step import spin_error
         raise spin_error(b, int(bad), h)
@@ -754,10 +742,11 @@ def _contact_step(v, b, c: BodyContacts, acceleration, history: ImpulseHistory, 
 
 def step(view, bodies, contacts: BodyContacts, acceleration: np.ndarray,
          history: ImpulseHistory, dt: float, threshold: float, gravity: np.ndarray,
-         joints=None, substeps: int = SUBSTEPS, compiled: bool = True,
-         forces=None) -> SoftRows:
+         joints=None, compiled: bool = True, forces=None,
+         settings: SolverSettings | None = None) -> SoftRows:
     """The soft step over ``dt`` (module docstring) on ``view`` (the bodies, or the packed
-    view of bodies and particles), whose first kick of dt/``substeps`` is already done
+    view of bodies and particles) with the tuning numbers of ``settings`` (``World.settings``;
+    the defaults when None), whose first kick of dt/``settings.soft_substeps`` is already done
     (``World._kick``): the later kicks give gravity, damping and the forces and torques in
     ``bodies.force`` / ``bodies.torque`` (the step's, found once), ``bodies`` the damping;
     ``acceleration`` (one row per view body) what forces
@@ -773,13 +762,15 @@ def step(view, bodies, contacts: BodyContacts, acceleration: np.ndarray,
     grew by (1 − (n+1)/2n)·(ω·dt)² each step (1.4 % a second for ω 4.5 rad/s at dt 1/500,
     n = 4). Found every substep it is, and a body the forces hold is still at rest every
     substep."""
+    st = _DEFAULTS if settings is None else settings
     v = view
     c = contacts
     b = bodies
     nb = b.count
+    substeps = st.soft_substeps
     h = dt / substeps
     inv_h = 1.0 / h
-    soft, static = _softness_rows(h)
+    soft, static = _softness_rows(h, st)
     out = SoftRows(c)
     jointed = joints is not None and len(joints) > 0
     if not jointed and compiled and forces is None:
@@ -788,8 +779,8 @@ def step(view, bodies, contacts: BodyContacts, acceleration: np.ndarray,
             _refuse_blow_up(v, b.count)
             return out
         # the whole step in one compiled call (it checks what it leaves: ``_refuse_blow_up``)
-        return _contact_step(v, b, c, acceleration, history, h, threshold, gravity, substeps,
-                             soft, static, out)
+        return _contact_step(v, b, c, acceleration, history, h, threshold, gravity, st, soft,
+                             static, out)
     r = _Rows(c)
     awake = v.awake
     if c.count:
@@ -807,7 +798,7 @@ def step(view, bodies, contacts: BodyContacts, acceleration: np.ndarray,
         history.clear()
     passes = 0
     total = np.zeros(c.count)  # each point's impulse over the step (``BodyContacts.impulse``)
-    jr = joint_soft.prepare(v, joints, h) if jointed else None
+    jr = joint_soft.prepare(v, joints, h, st) if jointed else None
     start_pos = v.position[:nb].copy()  # where the forces were found (``kick``)
     turn = np.empty((nb, 3))
     # restitution returns at most what the substeps' contacts (and joints) absorbed
@@ -859,7 +850,7 @@ def step(view, bodies, contacts: BodyContacts, acceleration: np.ndarray,
         if c.count:
             warm_start(r.start, c.a, c.b, c.normal, r.t1, r.t2, v.inv_mass, v.velocity,
                        v.angular_velocity, r.impulse, r.jt1, r.jt2, r.jtw, r.arm, r.farm)
-            passes += _pass(v, c, r, inv_h, True, soft, static, SOLVE_PASSES)
+            passes += _pass(v, c, r, inv_h, True, soft, static, st, st.soft_solve_passes)
         if c.count:  # friction within the solve's cone, in this pose (``soft_energy``),
             # before the joints' solve, so the velocity it takes back is one they see
             soft_energy.friction_cone(r.start, c.a, c.b, c.normal, r.t1, r.t2, r.fmu, r.radius,
@@ -868,7 +859,7 @@ def step(view, bodies, contacts: BodyContacts, acceleration: np.ndarray,
         if jointed:
             joint_friction.apply(v, joints, h)  # (Box2D's order: a joint's friction first)
             passes += joint_soft.solve(v, joints, jr, False, (lambda: _pass(
-                v, c, r, inv_h, True, soft, static)) if c.count else None)
+                v, c, r, inv_h, True, soft, static, st)) if c.count else None, st)
         bad = integrate_positions(v.position, v.orientation, v.velocity, v.angular_velocity,
                                   v.inv_inertia, v.inv_inertia_world, h, awake)
         if bad >= 0:
@@ -876,17 +867,17 @@ def step(view, bodies, contacts: BodyContacts, acceleration: np.ndarray,
                 f"body {bad} became non-finite (position {v.position[bad].tolist()}, velocity "
                 f"{v.velocity[bad].tolist()})")
         if jointed:  # the rows in the pose the drift left: the relax's and the next solve's
-            jr = joint_soft.prepare(v, joints, h)
+            jr = joint_soft.prepare(v, joints, h, st)
             joint_soft.recall(joints, jr)
         if c.count:
             out.deepest = _refresh(v, c, r)
-            passes += _pass(v, c, r, inv_h, False, soft, static, RELAX_PASSES)
+            passes += _pass(v, c, r, inv_h, False, soft, static, st, st.soft_relax_passes)
             if alone is not None:
                 soft_energy.limit_scenery(alone, start_energy, v.velocity, v.angular_velocity,
                                           v.orientation, v.inv_mass, v.inv_inertia)
         if jointed:
             passes += joint_soft.solve(v, joints, jr, True, (lambda: _pass(
-                v, c, r, inv_h, False, soft, static)) if c.count else None)
+                v, c, r, inv_h, False, soft, static, st)) if c.count else None, st)
         if islands:
             soft_energy.limit_islands(label, grounded, island_energy, v.position, v.velocity,
                                       v.angular_velocity, v.orientation, v.inv_mass,
@@ -901,7 +892,7 @@ def step(view, bodies, contacts: BodyContacts, acceleration: np.ndarray,
             restitution(r.start, c.a, c.b, c.normal, c.restitution, r.along, r.approach,
                         r.relv, r.gap, r.peak, r.mass_n, v.inv_mass, v.velocity,
                         v.angular_velocity, r.impulse, r.arm, h, threshold, resting,
-                        RELAX_PASSES, TOLERANCE)
+                        st.soft_relax_passes, st.soft_tolerance)
 
         # the next step is warm started with what held the bodies, not with the bounce: a
         # bounce's impulse warm started on a point that now separates is velocity the next

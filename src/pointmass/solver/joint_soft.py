@@ -5,8 +5,9 @@
    block's and the angular rows', seen along this pose's axes), scaled to be no worse a
    start than none (below);
 2. solve — the rows with a soft position bias: Ċ = −b·C, C the joint's gap and angles in the
-   bodies' current pose, b the bias rate of a spring of ``JOINT_HERTZ`` and damping ratio
-   ``JOINT_DAMPING_RATIO`` solved implicitly over the substep (``body_soft.softness``);
+   bodies' current pose, b the bias rate of a spring of ``joint_hertz`` and damping ratio
+   ``joint_damping_ratio`` (``SolverSettings`` fields, ``World.settings``) solved implicitly
+   over the substep (``body_soft.softness``);
 3. (the drift, ``body_soft``);
 4. relax — the rows again in the pose the drift left, without the bias (Ċ = 0, rigid): the
    velocity the bias made to close a gap is taken back, so a gap is closed by moving the
@@ -43,7 +44,7 @@ velocities. What each pass solves is ``joint_solver.velocity_pass``:
   (rigid) or 6.7e3 m/s where Gauss–Seidel keeps 46 m/s (soft rows through the tree, seed
   123); a soft row on its own bodies only pulls.
 
-A bias closes a gap at the contacts' push-out speed (``body_soft.CONTACT_SPEED``, Box2D's
+A bias closes a gap at the contacts' push-out speed (``SolverSettings.contact_speed``, Box2D's
 ``contactSpeed``) at most: a joint made 0.5 m open is pulled shut, not thrown shut.
 
 What keeps random jointed scenes from exploding (benchmarks/rigid_fuzz.py, seeds 0–199, 300
@@ -84,7 +85,7 @@ free jointed scenes, 47 gained in a step, 15 by > 1e-3; none now). Measured now,
 143 jointed scenes, 300 steps: 0 explosions, fastest 2.2e3 m/s (seed 53), 9 end a step with
 an overlap > 2 cm.
 
-Angular rows. As Box2D's soft rows (sprung at ``JOINT_HERTZ`` with their own two bones'
+Angular rows. As Box2D's soft rows (sprung at ``joint_hertz`` with their own two bones'
 inertia, Gauss–Seidel beside the tree) a ragdoll's locks and limits gave under the loads that
 reach them through contacts and the tree: an elbow's lock under the torso lying on the arm
 carried 14 N·m on a spring of I·ω² = 347 N·m/rad and rested 2.35° off its axis (seed 1);
@@ -137,22 +138,20 @@ from . import joint_solver
 from .joint_tree import DIRECT as DIRECT_JOINT
 from .joint_tree import LOOP as LOOP_JOINT
 from .joint_tree import OFF as OFF_JOINT
+from .settings import SolverSettings
 
-#: Stiffness of a joint's position bias [Hz] and its damping ratio (Box2D v3's
-#: ``constraintHertz`` 60, ``constraintDampingRatio`` 2, the hertz capped at a quarter of the
-#: substep rate). Measured (dt 1/60, 4 substeps, 20 s): see ``body_soft``'s docstring.
-JOINT_HERTZ = 60.0
-JOINT_DAMPING_RATIO = 2.0
-#: Largest stiffness as a fraction of the substep rate (Box2D's 0.25).
-JOINT_HERTZ_CAP = 0.25
-#: Joint passes per stage at most; they stop once no joint row changes a velocity by more
-#: than ``TOLERANCE`` [m/s or rad/s].
-MAX_PASSES = 30
-TOLERANCE = 1e-5
-#: Whether the tree solve stiffens the inertia by the joints' tension (``joint_solver``):
-#: off, as the module docstring says why (with it, random jointed seed 196 reached 1e158 rad/s
-#: in its first step; without it the 50-plank bridge kept its 2.749 mm gap, the pendulum
-#: tests their figures, and a 20-box chain released level whips to 12.4 mm, 13.6 mm with it).
+_DEFAULTS = SolverSettings()  # the entry points' settings when none are given
+
+# The joints' tuning numbers (the bias's hertz, damping ratio and cap, the passes and their
+# tolerance) are ``SolverSettings`` fields (Box2D v3's ``constraintHertz`` 60,
+# ``constraintDampingRatio`` 2, the hertz capped at a quarter of the substep rate), read from
+# the ``settings`` each entry point is given.
+
+#: Whether the tree solve stiffens the inertia by the joints' tension (``joint_solver``): a
+#: choice of method, not a tuning number: off, as the module docstring says why (with it,
+#: random jointed seed 196 reached 1e158 rad/s in its first step; without it the 50-plank
+#: bridge kept its 2.749 mm gap, the pendulum tests their figures, and a 20-box chain released
+#: level whips to 12.4 mm, 13.6 mm with it).
 GEOMETRIC = False
 
 
@@ -167,18 +166,19 @@ class SoftJointRows:
     bias: np.ndarray
 
 
-def softness(h: float) -> tuple[float, float, float]:
+def softness(h: float, settings: SolverSettings = _DEFAULTS) -> tuple[float, float, float]:
     """(bias rate [1/s], mass scale, impulse scale) of the joints' spring over a substep h."""
     from .body_soft import softness as make_soft  # (body_soft imports this module)
 
-    hertz = min(JOINT_HERTZ, JOINT_HERTZ_CAP / h)
-    return make_soft(hertz, JOINT_DAMPING_RATIO, h)
+    hertz = min(settings.joint_hertz, settings.joint_hertz_cap / h)
+    return make_soft(hertz, settings.joint_damping_ratio, h)
 
 
-def prepare(view, joints, h: float) -> SoftJointRows:
+def prepare(view, joints, h: float, settings: SolverSettings = _DEFAULTS) -> SoftJointRows:
     """The joints' rows in the bodies' pose now (arms, masses, axes, limits, the tree's
-    factors), targets for the solve (Ċ = −b·C) and for the relax pass (0)."""
-    rate, mass_scale, impulse_scale = softness(h)
+    factors), targets for the solve (Ċ = −b·C) and for the relax pass (0), with the tuning
+    numbers of ``settings`` (``World.settings``)."""
+    rate, mass_scale, impulse_scale = softness(h, settings)
     rows = joint_solver.prepare(view, joints, h, beta=rate * h, loops=True,
                                 geometric=GEOMETRIC, pairs=False, rows_through=True)
     rows.mass_scale = mass_scale
@@ -188,11 +188,10 @@ def prepare(view, joints, h: float) -> SoftJointRows:
     rows.aim_loops = False
     rows.bias[rows.mode == LOOP_JOINT] /= rate * h
     # a gap is closed at the contacts' push-out speed at most (Box2D's ``contactSpeed``)
-    from .body_soft import CONTACT_SPEED
-
+    speed = settings.contact_speed
     size = np.sqrt((rows.bias * rows.bias).sum(axis=1))
-    rows.bias *= np.minimum(1.0, CONTACT_SPEED / np.maximum(size, 1e-300))[:, None]
-    rows.speed = CONTACT_SPEED  # ... and so is the aim at the end pose
+    rows.bias *= np.minimum(1.0, speed / np.maximum(size, 1e-300))[:, None]
+    rows.speed = speed  # ... and so is the aim at the end pose
     # the angular rows of the tree's joints: rigid through the tree, aimed at closing their
     # angle within the substep (module docstring, "Angular rows")
     shut = rows.through & ~((rows.row == LIMIT) & (rows.target <= 0.0))
@@ -320,11 +319,13 @@ def _recall(turn, axis, row, mode, lam):
             lam[j, s] = x
 
 
-def solve(view, joints, rows: SoftJointRows, relax: bool, contact_pass=None) -> int:
+def solve(view, joints, rows: SoftJointRows, relax: bool, contact_pass=None,
+          settings: SolverSettings = _DEFAULTS) -> int:
     """Joint passes of the solve (``relax`` False) or the relax stage, each followed by one
     ``contact_pass()`` of the same stage if given, until no joint row changes a velocity by
-    more than ``TOLERANCE``; then the angular impulses are kept (``joints.turn``) for the
-    relax pass and the next substep's warm start. Returns the passes run.
+    more than ``settings.joint_tolerance`` (at most ``settings.joint_passes``); then the
+    angular impulses are kept (``joints.turn``) for the relax pass and the next substep's warm
+    start. Returns the passes run.
 
     The solve's aim at the end pose is Newton's method (``joint_predict``): where a pass
     leaves more to do than the one before (it diverges: a lever arm turning through a large
@@ -333,10 +334,10 @@ def solve(view, joints, rows: SoftJointRows, relax: bool, contact_pass=None) -> 
     r = rows.relax if relax else rows.solve
     passes = 0
     last = np.inf
-    while passes < MAX_PASSES:
+    while passes < settings.joint_passes:
         passes += 1
         change = joint_solver.velocity_pass(view, joints, r)
-        if change <= TOLERANCE:
+        if change <= settings.joint_tolerance:
             break
         if r.predict and change >= last:
             r.predict = False

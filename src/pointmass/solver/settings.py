@@ -7,7 +7,9 @@ passes one (``World(settings=SolverSettings(max_velocity_passes=30))``, or
 ``dataclasses.replace(world.settings, ...)`` assigned to ``world.settings``), never patches a
 module. Numerical guards that are not choices (the epsilons that tell a zero from round-off,
 ``kernels.PENETRATION_EPSILON``, ``remeasure.STIFF_CAP``) and memory layouts that change
-no result (``sweeps.STREAMS``, ``partition.SLABS``) stay beside the code that needs them.
+no result (``sweeps.STREAMS``, ``partition.SLABS``) stay beside the code that needs them, as
+do the choices of method that other stages rely on (``body_soft.FRICTION_IN_SOLVE``,
+``joint_soft.GEOMETRIC``) and the guards of a root finder (``body_continuous.ITERATIONS``).
 """
 
 from __future__ import annotations
@@ -19,7 +21,8 @@ from dataclasses import dataclass, fields
 @dataclass(frozen=True)
 class SolverSettings:
     """The solver's tuning numbers (see the module docstring; ``solver/solver.py`` for the
-    particle stages that read them).
+    particle stages that read them, ``solver/body_soft.py``, ``joint_soft.py`` and
+    ``body_continuous.py`` for the soft step's).
 
     Particle contacts and links, the velocity stage:
 
@@ -77,6 +80,63 @@ class SolverSettings:
         parallel_min_contacts: From this many contacts the passes run on every core, block by
             block (``partition.py``); chosen by the contacts only, so any thread count gives
             the same bits. It did not pay at any size measured, so it starts above them all.
+
+    The bodies' soft step (``World(body_step="soft")``, the default; ``solver/body_soft.py``,
+    Box2D v3's solver), its contacts:
+
+    Attributes:
+        soft_substeps: Substeps of one body step (Box2D's ``subStepCount``): each kicks,
+            solves, drifts and relaxes over h = dt / ``soft_substeps``. Fewer is cheaper and
+            coarser: a pendulum's energy swings by O(ω·h)² (±0.57 % of m·g·L at h = 1/240).
+        contact_hertz: Stiffness of a contact as a frequency [Hz] (a spring–damper solved
+            implicitly over h), doubled against scenery. Box2D's 30 Hz is too soft for a tower
+            of unit boxes: a column of rocking springs k = m·ω² per corner buckles under its own
+            weight above ~15 m at 30 Hz, ~24 m at 60 Hz, ~61 m at 240 Hz (measured, 20 s, sleep
+            off: 20 boxes fall at 30 Hz, 30 at 60 Hz; at 240 Hz 30 boxes drift 1.3 mm). A
+            body resting under a load sinks by about load / (m·(2π·hertz)²).
+        contact_hertz_cap: Largest contact stiffness as a fraction of the substep rate 1/h
+            (Box2D's 0.25 for joints; 1: the cap does not bind at dt 1/60, 4 substeps).
+        contact_damping_ratio: Damping ratio ζ of the contact spring (Box2D's
+            ``contactDampingRatio``, 10: heavily overdamped); 0: undamped.
+        contact_speed: Largest speed [m/s] at which a soft row pushes an overlap out, and a
+            joint's bias closes a gap (Box2D's ``contactSpeed``).
+        soft_solve_passes: Passes of the biased solve per substep at most (Box2D: 1); they
+            stop once no row changes a velocity by more than ``soft_tolerance``. One pass
+            leaves a tall stack's Gauss–Seidel order in it (measured, 20 s, sleep off: 20 boxes
+            fall with 1 + 1, drift 0.6 mm with up to 30 + 30).
+        soft_relax_passes: ... of the relax stage per substep (Box2D: 1), and of the
+            restitution's passes after the substeps.
+        soft_tolerance: The soft passes (and the restitution's) stop once no row changes a
+            velocity by more than this [m/s].
+        soft_relaxation: Over-relaxation ω of the biased solve's normal rows, in (0, 2)
+            (projected SOR: the soft rows' K + γ is positive definite). Measured, passes a step
+            at t = 3–4 s, ω 1.0 / 1.3 / 1.5 / 1.8: the 10-box tower 83 / 59 / 48 / 77, the
+            210-box pyramid 190 / 155 / 54 / 87; 1.5 with the relax plain: 32 and 40.
+
+    Its joints (``solver/joint_soft.py``):
+
+    Attributes:
+        joint_hertz: Stiffness of a joint's position bias [Hz] (Box2D's ``jointHertz`` 60)
+            for the rows solved by Gauss–Seidel; the rows solved through a tree of joints are
+            rigid and do not read it.
+        joint_damping_ratio: ... its damping ratio (Box2D's ``jointDampingRatio`` 2); 0:
+            undamped.
+        joint_hertz_cap: Largest joint stiffness as a fraction of the substep rate (Box2D's
+            0.25).
+        joint_passes: Joint passes per stage (solve, relax) at most; they stop once no joint
+            row changes a velocity by more than ``joint_tolerance`` [m/s or rad/s].
+        joint_tolerance: See ``joint_passes``.
+
+    Its continuous collision (``solver/body_continuous.py``, Box2D v3's
+    ``b2SolveContinuous``):
+
+    Attributes:
+        continuous_slop: Box2D's linear slop [m]: the separation a time of impact stops a fast
+            body at, and how much deeper than at the step's start a touching pair may end it
+            (the collision's speculative margin, ``collide.SPECULATIVE_MARGIN``, is the same
+            5 mm: a stopped body is within it at the next step's start).
+        continuous_safety: A body is fast (swept back) when a point of it moves more than
+            this fraction of its smallest half-extent in a step (Box2D's ``safetyFactor``).
     """
 
     velocity_tolerance: float = 1e-4
@@ -96,6 +156,22 @@ class SolverSettings:
     direct_always_contacts: int = 64
     direct_min_mass_ratio: float = 10.0
     parallel_min_contacts: int = 1_000_000
+    soft_substeps: int = 4
+    contact_hertz: float = 240.0
+    contact_hertz_cap: float = 1.0
+    contact_damping_ratio: float = 10.0
+    contact_speed: float = 3.0
+    soft_solve_passes: int = 30
+    soft_relax_passes: int = 30
+    soft_tolerance: float = 1e-5
+    soft_relaxation: float = 1.5
+    joint_hertz: float = 60.0
+    joint_damping_ratio: float = 2.0
+    joint_hertz_cap: float = 0.25
+    joint_passes: int = 30
+    joint_tolerance: float = 1e-5
+    continuous_slop: float = 0.005
+    continuous_safety: float = 0.5
 
     def __post_init__(self) -> None:
         for f in fields(self):
@@ -108,7 +184,9 @@ class SolverSettings:
                 if value < low:
                     raise ValueError(f"SolverSettings.{f.name} must be >= {low}, got {value}")
             else:
-                low_ok = f.name == "projection_slop"  # 0: no slop
+                # 0: no slop, an undamped spring
+                low_ok = f.name in ("projection_slop", "contact_damping_ratio",
+                                    "joint_damping_ratio")
                 if isinstance(value, bool) or not isinstance(value, (int, float)) \
                         or not math.isfinite(value) or value < 0 or (value == 0 and not low_ok):
                     raise ValueError(f"SolverSettings.{f.name} must be a finite number "
@@ -116,6 +194,12 @@ class SolverSettings:
         if not 1.0 <= self.large_set_relaxation < 2.0:
             raise ValueError("SolverSettings.large_set_relaxation must be in [1, 2) (ω ≥ 2 "
                              f"diverges), got {self.large_set_relaxation}")
+        if not 0.0 < self.soft_relaxation < 2.0:
+            raise ValueError("SolverSettings.soft_relaxation must be in (0, 2) (ω ≥ 2 "
+                             f"diverges), got {self.soft_relaxation}")
+        if self.soft_substeps > 1000:
+            raise ValueError("SolverSettings.soft_substeps must be in [1, 1000], got "
+                             f"{self.soft_substeps}")
         if self.direct_min_mass_ratio < 1.0:
             raise ValueError("SolverSettings.direct_min_mass_ratio must be >= 1, got "
                              f"{self.direct_min_mass_ratio}")

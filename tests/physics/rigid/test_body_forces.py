@@ -18,7 +18,9 @@ from pointmass.rigid.forces import (
     Explosion,
 )
 from pointmass.rigid.shapes import Box, Sphere
-from pointmass.solver import body_soft
+
+#: The solver's tuning numbers as World() has them (``pm.SolverSettings``)
+DEFAULTS = pm.SolverSettings()
 
 
 def momenta(world):
@@ -238,7 +240,7 @@ def test_constant_force_and_torque_give_momenta_f_t_and_tau_t(stage):
     world.add(BodyForce(lambda bodies, i, dt: (force, torque), [box]))
     p0, l0 = momenta(world)
     dt, steps = 1 / 60, 240
-    parts = body_soft.SUBSTEPS if stage == "soft" else 1
+    parts = DEFAULTS.soft_substeps if stage == "soft" else 1
     n, h = steps * parts, dt / parts
     moment = np.cross(n * box.position + h * box.velocity * n * (n - 1) / 2, force) * h
     for _ in range(steps):
@@ -316,7 +318,7 @@ def test_a_body_spring_keeps_its_energy_over_twenty_seconds(stage):
     for _ in range(1200):
         world.step(1 / 60)
         energies.append(world.kinetic_energy() + world.potential_energy())
-    band = math.sqrt(10.0 / 0.5) / 60 / (body_soft.SUBSTEPS if stage == "soft" else 1)
+    band = math.sqrt(10.0 / 0.5) / 60 / (DEFAULTS.soft_substeps if stage == "soft" else 1)
     assert (1 - band) * e0 < min(energies) and max(energies) < (1 + band) * e0
 
 

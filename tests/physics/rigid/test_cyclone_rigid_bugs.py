@@ -12,7 +12,9 @@ import pytest
 import pointmass as pm
 from pointmass.rigid.shapes import Box, Sphere
 from pointmass.rigid.step import MAX_ROTATION
-from pointmass.solver import body_soft
+
+#: The solver's tuning numbers as World() has them (``pm.SolverSettings``)
+DEFAULTS = pm.SolverSettings()
 
 DT = 1 / 60
 
@@ -34,7 +36,7 @@ def test_r1_a_free_spinning_body_keeps_its_angular_momentum_and_precesses():
     assert not np.allclose(body.angular_velocity, (1.0, 4.0, 0.5))   # ω itself precesses
 
 
-@pytest.mark.parametrize(("stage", "kicks"), [("impulses", 1), ("soft", body_soft.SUBSTEPS)])
+@pytest.mark.parametrize(("stage", "kicks"), [("impulses", 1), ("soft", DEFAULTS.soft_substeps)])
 def test_r2_rotation_per_step_is_bounded_and_inertia_follows_the_pose(stage, kicks):
     """R2: Cyclone uses last step's world inertia and lets ω·dt grow without bound. A huge
     torque here is capped where it is integrated: the first kick's spin is MAX_ROTATION / h
@@ -128,7 +130,7 @@ def test_r7_a_box_resting_on_a_box_gets_four_points_on_the_face(stage):
     period-2 rock of the Gauss–Seidel order that dies out, 1e-10 rad by step 100), where one
     point (Cyclone) lets it rock by degrees; its
     step-end velocity is what the relax passes leave, which stop once no row changes a
-    velocity by more than ``body_soft.TOLERANCE`` = 1e-5 m/s (measured 7.7e-6 m/s)."""
+    velocity by more than ``SolverSettings.soft_tolerance`` = 1e-5 m/s (measured 7.7e-6 m/s)."""
     world = pm.World(body_step=stage)
     world.add(pm.Ground(friction=0.5))
     world.add_body(Box((0.5, 0.5, 0.5)), (0.0, 0.5, 0.0), mass=1.0)
@@ -142,11 +144,11 @@ def test_r7_a_box_resting_on_a_box_gets_four_points_on_the_face(stage):
     if stage == "impulses":
         assert np.abs(world.bodies.velocity).max() < 1e-6
         return
-    h = DT / body_soft.SUBSTEPS
-    omega = 2.0 * math.pi * min(body_soft.CONTACT_HERTZ, body_soft.HERTZ_CAP / h)
+    h = DT / DEFAULTS.soft_substeps
+    omega = 2.0 * math.pi * min(DEFAULTS.contact_hertz, DEFAULTS.contact_hertz_cap / h)
     sag = 9.81 / (4 * (1.0 / 8.0) * omega**2)
     assert tilt < sag / 0.5
-    assert np.abs(world.bodies.velocity).max() < body_soft.TOLERANCE
+    assert np.abs(world.bodies.velocity).max() < DEFAULTS.soft_tolerance
 
 
 @pytest.mark.parametrize("stage", ["impulses", "soft"])
@@ -177,8 +179,8 @@ def test_r8_r9_contacts_persist_and_a_stack_converges(stage):
         world.step(DT)
     assert np.linalg.norm(boxes[-1].position - top) < 1e-9
     if stage == "soft":
-        h = DT / body_soft.SUBSTEPS
-        omega = 2.0 * math.pi * min(body_soft.CONTACT_HERTZ, body_soft.HERTZ_CAP / h)
+        h = DT / DEFAULTS.soft_substeps
+        omega = 2.0 * math.pi * min(DEFAULTS.contact_hertz, DEFAULTS.contact_hertz_cap / h)
         g, box_row, ground_row = 9.81, 1.0 / 8.0, 1.0 / 4.0
         sag = (10 * g / (4 * ground_row * (2 * omega) ** 2)
                + sum(k * g / (4 * box_row * omega**2) for k in range(1, 10)))

@@ -11,7 +11,10 @@ import pytest
 import pointmass as pm
 from pointmass.rigid.joints import BallJoint, HingeJoint
 from pointmass.rigid.shapes import Box
-from pointmass.solver import body_soft, joint_soft, joint_solver, joint_tree
+from pointmass.solver import joint_soft, joint_solver, joint_tree
+
+#: The solver's tuning numbers as World() has them (``pm.SolverSettings``)
+DEFAULTS = pm.SolverSettings()
 
 DT = 1 / 60
 G = 9.81
@@ -139,8 +142,8 @@ def test_a_rope_bridge_of_fifty_planks_holds_at_the_defaults():
     rows = joint_solver.prepare(world.bodies, world.joints, DT)
     assert (rows.mode == joint_tree.LOOP).sum() == 1
     mass = 1.0 / world.bodies.inv_mass
-    # the drift's step: the soft step drifts in body_soft.SUBSTEPS substeps of every step
-    h = DT / (body_soft.SUBSTEPS if world.body_step == "soft" else world.substeps)
+    # the drift's step: the soft step drifts in ``soft_substeps`` substeps of every step
+    h = DT / (DEFAULTS.soft_substeps if world.body_step == "soft" else world.substeps)
 
     def shadow():
         return _energy(world) - 0.5 * h * G * float(mass @ world.bodies.velocity[:, 1])

@@ -10,7 +10,9 @@ import pointmass as pm
 from pointmass.rigid import islands
 from pointmass.rigid.forces import Explosion
 from pointmass.rigid.shapes import Box, Sphere
-from pointmass.solver import body_soft
+
+#: The solver's tuning numbers as World() has them (``pm.SolverSettings``)
+DEFAULTS = pm.SolverSettings()
 
 DT = 1 / 60
 HALF = 0.5
@@ -120,8 +122,8 @@ def test_a_stack_sleeps_as_one_island_never_the_bottom_alone(stage):
     if stage == "impulses":
         bound = 1e-6
     else:
-        h = DT / body_soft.SUBSTEPS
-        omega = 2.0 * math.pi * min(body_soft.CONTACT_HERTZ, body_soft.HERTZ_CAP / h)
+        h = DT / DEFAULTS.soft_substeps
+        omega = 2.0 * math.pi * min(DEFAULTS.contact_hertz, DEFAULTS.contact_hertz_cap / h)
         g = 9.81
         tilt = g * 0.2 * seconds * (8.0 + 1.0) / omega**2  # the slide's end, x = 0.4 m
         bound = g * tilt * seconds

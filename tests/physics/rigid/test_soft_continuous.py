@@ -20,11 +20,15 @@ import pointmass as pm
 from pointmass.rigid.contacts import BodyContacts
 from pointmass.rigid.quaternion import quat_from_axis_angle
 from pointmass.rigid.shapes import SPHERE, Box, Sphere
-from pointmass.solver.body_continuous import SLOP, TOLERANCE, sweep_back
+from pointmass.solver.body_continuous import sweep_back
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[3] / "benchmarks"))
 import rigid_fuzz as fuzz
 
+#: The continuous stage's slop (``SolverSettings.continuous_slop``) and its advancement's
+#: tolerance (a quarter of it, ``b2TimeOfImpact``'s)
+SLOP = pm.SolverSettings().continuous_slop
+TOLERANCE = 0.25 * SLOP
 DT = 1.0 / 60.0
 
 

@@ -9,18 +9,20 @@ from pointmass.keys import body_pair_key, body_plane_key
 from pointmass.rigid.bodies import Bodies
 from pointmass.rigid.shapes import Box, Sphere
 from pointmass.rigid.step import step
-from pointmass.solver import body_soft
+
+#: The solver's tuning numbers as World() has them (``pm.SolverSettings``)
+DEFAULTS = pm.SolverSettings()
 
 
 @pytest.mark.parametrize("stage", ["impulses", "soft"])
 def test_free_bodies_move_exactly_as_the_stepper_moves_them(stage):
     """A free body moves bit for bit as the stand-alone stepper moves it over the body stage's
-    own integration steps: one of dt ("impulses"), or ``body_soft.SUBSTEPS`` of h = dt/SUBSTEPS
+    own integration steps: one of dt ("impulses"), or ``soft_substeps`` of h = dt/``soft_substeps``
     ("soft"; a force or torque found once a step acts in every substep's kick, as the
     stepper's torque given before each of its calls). The two stages differ from each other
     by the O(h) of semi-implicit Euler: in free fall y(t) = y₀ + v₀t − g·t²/2 − g·t·h/2, so
     2 s at h = dt and dt/4 are 0.1226 m apart (measured: −13.7835 and −13.6609)."""
-    kicks = 1 if stage == "impulses" else body_soft.SUBSTEPS
+    kicks = 1 if stage == "impulses" else DEFAULTS.soft_substeps
     world = pm.World(gravity=(0.0, -9.81, 0.0), body_step=stage)
     q = (0.9, 0.1, -0.3, 0.2)
     body = world.add_body(Box((0.3, 0.5, 0.9)), (1.0, 2.0, 3.0), q, velocity=(1.0, 2.0, 0.0),

@@ -12,7 +12,9 @@ import pointmass as pm
 from pointmass.rigid.forces import BodySpring
 from pointmass.rigid.joints import BallJoint
 from pointmass.rigid.shapes import Box, Sphere
-from pointmass.solver import body_soft
+
+#: The solver's tuning numbers as World() has them (``pm.SolverSettings``)
+DEFAULTS = pm.SolverSettings()
 
 DT = 1 / 60
 
@@ -105,7 +107,7 @@ def test_the_soft_step_refuses_a_velocity_too_large_to_square():
         world.step(DT)
 
 
-@pytest.mark.parametrize(("stage", "kicks"), [("impulses", 1), ("soft", body_soft.SUBSTEPS)])
+@pytest.mark.parametrize(("stage", "kicks"), [("impulses", 1), ("soft", DEFAULTS.soft_substeps)])
 def test_a_spin_past_the_bound_raises_instead_of_becoming_zero(stage, kicks):
     """|ω| = 1e300 rad/s was scaled by cap/inf to exactly 0 with no word; now the step raises
     naming the body. A finite spin past the cap is still slowed to it: π/4 per integration
