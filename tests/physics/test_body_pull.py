@@ -12,7 +12,6 @@ import pytest
 import pointmass as pm
 from pointmass.rigid.pull import BodyPull, largest_eigenvalue, point_mass
 from pointmass.rigid.shapes import Box
-from pointmass.solver import body_soft
 
 CUBE = (0.5, 0.5, 0.5)
 
@@ -74,7 +73,7 @@ def test_a_light_plank_held_by_its_end_stays_stable_and_hangs_by_m_g_over_k():
     dt = 4/30 s gives h = 1/30 s)."""
     mass = 0.01
     h = 1 / 30
-    dt = h * body_soft.SUBSTEPS
+    dt = h * pm.SolverSettings().soft_substeps
     world = pm.World(gravity=(0.0, -9.81, 0.0))
     assert world.body_step == "soft"
     world.add_body(Box((1.0, 0.02, 0.1)), (0.0, 1.0, 0.0), mass=mass)
