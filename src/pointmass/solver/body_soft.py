@@ -30,8 +30,9 @@ here are ``SolverSettings`` fields, ``World.settings``):
 
 After the substeps, restitution: a point that closed faster than the threshold and pushed is
 given the separating velocity −e·v₀ (less the closing speed gravity alone made, the
-resting-contact trick), v₀ its normal velocity before it first pushed; then the impulses are
-kept for the next step's warm start (``ImpulseHistory``, by contact key).
+resting-contact trick), v₀ its normal velocity at the start of the substep it first pushed
+in, before any warm start (``closing``); then the impulses are kept for the next step's warm
+start (``ImpulseHistory``, by contact key).
 
 Each point keeps its two body-fixed anchors from collision. Before each pass the world points
 of both anchors are found again from the bodies' current poses: their gap along the normal is
@@ -153,8 +154,8 @@ def anchor(ca, cb, n, ra, rb, quat, inv_mass, inv_i, vel, ang, acc, la, lb, alon
            relv):
     """Per point: the body-fixed anchors la, lb (lb: the world point for scenery), |a·n|
     summed over both bodies (for the resting-contact trick), the closing acceleration
-    −(aA − aB)·n and the normal velocity now (the restitution's v₀ until the point first
-    pushes)."""
+    −(aA − aB)·n and the normal velocity now at the collision's arms (``closing`` finds it
+    again at the substeps' arms)."""
     for c in range(ca.shape[0]):
         a = ca[c]
         b = cb[c]
@@ -295,9 +296,8 @@ def soft_pass(start, ca, cb, n, t1, t2, fmu, radius, mass_n, mass_t1, mass_t2, m
     and stay plain: over-relaxed too, a face-down box bounced 6 % too high); a gap s > 0
     closes by s/h at most), then the
     twist and the tangents at the friction centre within μ·Λ (with ``friction``). ``peak``
-    keeps each point's largest accumulated impulse this step; ``relv`` its normal velocity
-    and ``gap`` its separation (≥ 0) until it first pushes (the restitution's v₀). Returns
-    the largest velocity change of a row [m/s]."""
+    keeps each point's largest accumulated impulse this step (``closing`` reads it). Returns
+    the largest velocity change of a row [m/s]. ``relv`` and ``gap`` are not read."""
     count = t1.shape[0]
     largest = 0.0
     for k in range(count):
@@ -318,9 +318,6 @@ def soft_pass(start, ca, cb, n, t1, t2, fmu, radius, mass_n, mass_t1, mass_t2, m
             if b >= 0:
                 vs -= bp._along(vel, ang, b, nx, ny, nz, arm, c, 3)
             s = sep[c]
-            if peak[c] == 0.0:  # not pushed yet: the velocity it closes with, and from where
-                relv[c] = vs
-                gap[c] = max(s, 0.0)
             scale = 1.0
             keep = 0.0
             if s > 0.0:
@@ -397,6 +394,39 @@ def soft_pass(start, ca, cb, n, t1, t2, fmu, radius, mass_n, mass_t1, mass_t2, m
                 ang[b, u] -= d1 * farm[k, 18 + u] + d2 * farm[k, 21 + u]
 
     return largest
+
+
+@njit(cache=True, nogil=True)
+def closing(ca, cb, n, sep, peak, arm, vel, ang, relv, gap, speed):
+    """Before a substep's warm start (``speed`` True): each point that has not pushed yet
+    this step (``peak`` 0) keeps its normal velocity ``relv`` and separation ``gap`` (≥ 0)
+    now, the restitution's v₀ and where it was seen (Box2D's ``relativeVelocity``, found
+    before the warm start). After the drift, before the relax (``speed`` False), only its gap:
+    a corner that first pushes in the relax (a speculative row that the next drift would
+    overrun) is extrapolated from the gap its velocity drifted it to, v₀² = v² + 2·a·gap, as
+    the rebound tests derive (test_contact_acceptance; from the gap before the drift it
+    touched 0.9 % faster). The velocity after the drift is not read: it still holds the soft
+    solve's push-out, which the relax takes back (read there, seed 14's ragdoll still moved
+    at 0.1 m/s at 3 s).
+
+    Read after the warm start (in the first pass that pushed), v₀ held the other points'
+    warm-started impulses: a bone of a ragdoll lying on the ground, whose contacts' impulses
+    balance its joints' (the tree's point blocks are not warm started), was spun to 9 rad/s
+    by its contacts' warm start alone, a corner seen closing at 0.19–0.30 m/s bounced at
+    e·v₀ every step, and the bone ended each step at 0.03 m/s and 0.2 rad/s that the next
+    step took back (demos/21_ragdoll.py, seed 14: the arm never slept)."""
+    for c in range(ca.shape[0]):
+        if peak[c] != 0.0:
+            continue
+        gap[c] = max(sep[c], 0.0)
+        if not speed:
+            continue
+        a = ca[c]
+        b = cb[c]
+        vs = bp._along(vel, ang, a, n[c, 0], n[c, 1], n[c, 2], arm, c, 0)
+        if b >= 0:
+            vs -= bp._along(vel, ang, b, n[c, 0], n[c, 1], n[c, 2], arm, c, 3)
+        relv[c] = vs
 
 
 @njit(cache=True, nogil=True)
@@ -647,6 +677,7 @@ def contact_step(nb, substeps, h, gravity, soft, static, threshold, pos, quat, v
         if m:
             soft_energy.body_energies(alone, vel, ang, quat, inv_mass, inv_inertia,
                                       start_energy)
+            closing(ca, cb, n, sep, peak, arm, vel, ang, relv, gap, True)
             warm_start(start, ca, cb, n, t1, t2, inv_mass, vel, ang, impulse, jt1, jt2, jtw,
                        arm, farm)
             passes += soft_passes(start, ca, cb, n, t1, t2, fmu, radius, mass_n, mass_t1,
@@ -664,6 +695,7 @@ def contact_step(nb, substeps, h, gravity, soft, static, threshold, pos, quat, v
             deepest = refresh(start, ca, cb, n, la, lb, r0a, r0b, depth0, mu, inv_mass, inv_i,
                               pos, quat, ra, rb, sep, mass_n, t1, t2, fa, fb, mass_t1, mass_t2,
                               mass_tw, radius, fmu, arm, farm, round_a, round_b)
+            closing(ca, cb, n, sep, peak, arm, vel, ang, relv, gap, False)
             passes += soft_passes(start, ca, cb, n, t1, t2, fmu, radius, mass_n, mass_t1,
                                   mass_t2, mass_tw, sep, inv_mass, vel, ang, impulse, peak,
                                   relv, gap, jt1, jt2, jtw, arm, farm, inv_h, False, True,
@@ -842,6 +874,9 @@ def step(view, bodies, contacts: BodyContacts, acceleration: np.ndarray,
         if islands:
             soft_energy.island_energies(label, v.velocity, v.angular_velocity, v.orientation,
                                         v.inv_mass, v.inv_inertia, island_energy)
+        if c.count:  # the restitution's v₀, before any warm start (``closing``)
+            closing(c.a, c.b, c.normal, r.sep, r.peak, r.arm, v.velocity, v.angular_velocity,
+                    r.relv, r.gap, True)
         if jointed:  # (``joint_soft``: Box2D's joint stages, the tree solved exactly)
             joint_soft.warm_start(v, joints, jr)
         if alone is not None:
@@ -871,6 +906,8 @@ def step(view, bodies, contacts: BodyContacts, acceleration: np.ndarray,
             joint_soft.recall(joints, jr)
         if c.count:
             out.deepest = _refresh(v, c, r)
+            closing(c.a, c.b, c.normal, r.sep, r.peak, r.arm, v.velocity, v.angular_velocity,
+                    r.relv, r.gap, False)
             passes += _pass(v, c, r, inv_h, False, soft, static, st, st.soft_relax_passes)
             if alone is not None:
                 soft_energy.limit_scenery(alone, start_energy, v.velocity, v.angular_velocity,
