@@ -187,7 +187,7 @@ def test_the_soft_step_leaves_a_redundant_pair_of_joints_to_soft_rows():
     """Two joints on one pair of bodies (a redundant pair: the second point cannot move along
     the line to the first, so its mass through the tree is singular there) close a loop the
     soft step leaves to soft Gauss–Seidel rows (``joint_tree.unpair``), while a loop through
-    other bodies (the bridge's second anchor) still goes through the tree. (The default stage
+    other bodies (the bridge's second anchor) still goes through the tree. (The "impulses" stage
     finds the pair's mass singular and leaves every loop to Gauss–Seidel.)"""
     world = _rope_bridge(5)
     pair = [world.add_body(Box(HALF), (5.0, 2.0 + 0.2 * k, 0.0), mass=1.0) for k in range(2)]

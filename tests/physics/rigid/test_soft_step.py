@@ -58,8 +58,9 @@ def tower(n: int, seconds: float = 60.0, **world) -> tuple[float, float]:
     return math.hypot(top[0], top[2]), float(top[1] - (n - 0.5))
 
 
-_FALLS = pytest.mark.xfail(strict=True, reason="issue 26 point 1: the default stage's 20- and "
-                           "30-box towers fall within 60 s (top box 18 m away, on the floor)")
+_FALLS = pytest.mark.xfail(strict=True, reason="issue 26 point 1: the \"impulses\" stage's "
+                           "20- and 30-box towers fall within 60 s (top box 18 m away, on the "
+                           "floor)")
 
 
 @pytest.mark.parametrize("n", [5, 10, pytest.param(20, marks=_FALLS),
@@ -137,8 +138,8 @@ def pit(n: int = 1000, seconds: float = 10.0, seed: int = 0,
 
 
 @pytest.mark.slow
-@pytest.mark.xfail(strict=True, reason="issue 26 point 2: the default stage's apex drifts 8.0 mm "
-                   "in 10 s (max speed 0.39 mm/s meets its bound)")
+@pytest.mark.xfail(strict=True, reason="issue 26 point 2: the \"impulses\" stage's apex "
+                   "drifts 8.0 mm in 10 s (max speed 0.39 mm/s meets its bound)")
 def test_pyramid_stands_still_with_sleep_off():
     drift, speed = pyramid(**IMPULSES)
     assert drift < 0.005
@@ -154,7 +155,7 @@ def test_soft_step_pyramid_stands_still_with_sleep_off():
 
 
 @pytest.mark.slow
-@pytest.mark.xfail(strict=True, reason="issue 26 point 2: the default stage's pit still moves "
+@pytest.mark.xfail(strict=True, reason="issue 26 point 2: the \"impulses\" stage's pit still moves "
                    "at 10 s: max speed 0.090 m/s (overlap 0.29 mm meets its bound)")
 def test_box_pit_comes_to_rest_with_sleep_off():
     speed, overlap = pit(**IMPULSES)
@@ -198,7 +199,7 @@ def drop(shape: str, height: float, e: float = 0.5, **world) -> float:
     return peak / height
 
 
-@pytest.mark.xfail(strict=True, reason="issue 26 point 5: the default stage bounces off a "
+@pytest.mark.xfail(strict=True, reason="issue 26 point 5: the \"impulses\" stage bounces off a "
                    "speculative point above the floor: 0.272 / 0.310 / 0.292 / 0.273 / 0.306·h "
                    "(box and sphere alike, +9..+24 %)")
 @pytest.mark.parametrize("shape", ["box", "sphere"])
@@ -253,7 +254,7 @@ def collide(e: float, mu: float, steps: int = 240, **world) -> tuple[float, floa
     return worst_p, worst_l
 
 
-_PROJECTED = pytest.mark.xfail(strict=True, reason="issue 26 point 8: the default stage's "
+_PROJECTED = pytest.mark.xfail(strict=True, reason="issue 26 point 8: the \"impulses\" stage's "
                                "position projection turns the boxes: |ΔL|/|L| 3.5e-3 (e 0, μ 0)")
 
 
