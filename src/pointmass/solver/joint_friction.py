@@ -23,6 +23,8 @@ import math
 import numpy as np
 from numba import njit
 
+from .kernels import solve_symmetric3
+
 
 @njit(cache=True, nogil=True)
 def _apply(a, b, friction, inv_inertia_world, ang, awake, h):
@@ -50,23 +52,8 @@ def _apply(a, b, friction, inv_inertia_world, ang, awake, h):
                     k[r, c] += inv_inertia_world[ib, r, c]
         if w0 == 0.0 and w1 == 0.0 and w2 == 0.0:
             continue
-        # λ = −K⁻¹·w by cofactors (K symmetric, positive semi-definite)
-        c00 = k[1, 1] * k[2, 2] - k[1, 2] * k[2, 1]
-        c01 = k[1, 2] * k[2, 0] - k[1, 0] * k[2, 2]
-        c02 = k[1, 0] * k[2, 1] - k[1, 1] * k[2, 0]
-        det = k[0, 0] * c00 + k[0, 1] * c01 + k[0, 2] * c02
-        if not abs(det) > 1e-300:
-            continue  # no turn to resist: both bodies' rotation is fixed (static, or locked)
-        c11 = k[0, 0] * k[2, 2] - k[0, 2] * k[2, 0]
-        c12 = k[0, 2] * k[1, 0] - k[0, 0] * k[1, 2]
-        c22 = k[0, 0] * k[1, 1] - k[0, 1] * k[1, 0]
-        c10 = k[0, 2] * k[2, 1] - k[0, 1] * k[2, 2]
-        c20 = k[0, 1] * k[1, 2] - k[0, 2] * k[1, 1]
-        c21 = k[0, 2] * k[1, 0] - k[0, 0] * k[1, 2]
-        lam = np.empty(3)
-        lam[0] = -(c00 * w0 + c10 * w1 + c20 * w2) / det
-        lam[1] = -(c01 * w0 + c11 * w1 + c21 * w2) / det
-        lam[2] = -(c02 * w0 + c12 * w1 + c22 * w2) / det
+        # λ = −K⁻¹·w (0 where K is singular: both bodies' rotation fixed, static or locked)
+        lam = solve_symmetric3(k, np.array((-w0, -w1, -w2)))
         size = math.sqrt(lam[0] ** 2 + lam[1] ** 2 + lam[2] ** 2)
         if size > limit:
             lam *= limit / size

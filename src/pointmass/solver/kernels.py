@@ -24,6 +24,7 @@ from __future__ import annotations
 import math
 from collections import namedtuple
 
+import numpy as np
 from numba import njit
 
 Bodies = namedtuple("Bodies", "vel acc inv_mass disp")
@@ -199,3 +200,25 @@ def project(disp, ca, cb, n, depth0, bil, wa, wb, k, c):
             disp[b, i] -= n[c, i] * share * wb[c]
     return abs(d)
 
+
+@njit(cache=True, inline="always")
+def solve_symmetric3(a, b):
+    """x with a·x = b for a symmetric 3×3 ``a`` (0 where it is singular)."""
+    c00 = a[1, 1] * a[2, 2] - a[1, 2] * a[2, 1]
+    c01 = a[1, 2] * a[2, 0] - a[1, 0] * a[2, 2]
+    c02 = a[1, 0] * a[2, 1] - a[1, 1] * a[2, 0]
+    det = a[0, 0] * c00 + a[0, 1] * c01 + a[0, 2] * c02
+    out = np.zeros(3)
+    scale = a[0, 0] + a[1, 1] + a[2, 2]
+    if not abs(det) > 1e-14 * scale * scale * scale:
+        return out
+    c10 = a[0, 2] * a[2, 1] - a[0, 1] * a[2, 2]
+    c11 = a[0, 0] * a[2, 2] - a[0, 2] * a[2, 0]
+    c12 = a[0, 1] * a[2, 0] - a[0, 0] * a[2, 1]
+    c20 = a[0, 1] * a[1, 2] - a[0, 2] * a[1, 1]
+    c21 = a[0, 2] * a[1, 0] - a[0, 0] * a[1, 2]
+    c22 = a[0, 0] * a[1, 1] - a[0, 1] * a[1, 0]
+    out[0] = (c00 * b[0] + c10 * b[1] + c20 * b[2]) / det
+    out[1] = (c01 * b[0] + c11 * b[1] + c21 * b[2]) / det
+    out[2] = (c02 * b[0] + c12 * b[1] + c22 * b[2]) / det
+    return out

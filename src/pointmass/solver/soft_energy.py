@@ -77,6 +77,7 @@ from numba import njit
 from ..rigid.bodies import _kinetic_energy
 from ..rigid.islands import find_root
 from ..rigid.scalar import qrot, qrot_inv
+from .kernels import solve_symmetric3
 
 #: The restitution may exceed its budget by this fraction of the kinetic energy (round-off of
 #: summing it) before it is scaled.
@@ -431,7 +432,7 @@ def limit_islands(label, grounded, start, pos, vel, ang, quat, inv_mass, inv_ine
                                    c0[1] / inv_inertia[i, 1], c0[2] / inv_inertia[i, 2])
                         for u in range(3):
                             inertia[u, w] += col[u]
-            om = _solve3(inertia, ell)
+            om = solve_symmetric3(inertia, ell)
             rigid = 0.5 * mass * (vv[0] * vv[0] + vv[1] * vv[1] + vv[2] * vv[2]) \
                 + 0.5 * (om[0] * ell[0] + om[1] * ell[1] + om[2] * ell[2])
         rest = e - rigid
@@ -455,26 +456,3 @@ def limit_islands(label, grounded, start, pos, vel, ang, quat, inv_mass, inv_ine
                 if spin:  # (a particle row's spin carries no energy: left as it is)
                     ang[i, u] = om[u] + s * (ang[i, u] - om[u])
     return scaled
-
-
-@njit(cache=True, inline="always")
-def _solve3(a, b):
-    """x with a·x = b for a symmetric 3×3 ``a`` (0 where it is singular)."""
-    c00 = a[1, 1] * a[2, 2] - a[1, 2] * a[2, 1]
-    c01 = a[1, 2] * a[2, 0] - a[1, 0] * a[2, 2]
-    c02 = a[1, 0] * a[2, 1] - a[1, 1] * a[2, 0]
-    det = a[0, 0] * c00 + a[0, 1] * c01 + a[0, 2] * c02
-    out = np.zeros(3)
-    scale = a[0, 0] + a[1, 1] + a[2, 2]
-    if not abs(det) > 1e-14 * scale * scale * scale:
-        return out
-    c10 = a[0, 2] * a[2, 1] - a[0, 1] * a[2, 2]
-    c11 = a[0, 0] * a[2, 2] - a[0, 2] * a[2, 0]
-    c12 = a[0, 1] * a[2, 0] - a[0, 0] * a[2, 1]
-    c20 = a[0, 1] * a[1, 2] - a[0, 2] * a[1, 1]
-    c21 = a[0, 2] * a[1, 0] - a[0, 0] * a[1, 2]
-    c22 = a[0, 0] * a[1, 1] - a[0, 1] * a[1, 0]
-    out[0] = (c00 * b[0] + c10 * b[1] + c20 * b[2]) / det
-    out[1] = (c01 * b[0] + c11 * b[1] + c21 * b[2]) / det
-    out[2] = (c02 * b[0] + c12 * b[1] + c22 * b[2]) / det
-    return out
