@@ -287,8 +287,8 @@ def kick(nb, vel, ang, force, torque, start, pos, turn, inv_mass, inv_inertia, i
 
 @njit(cache=True, nogil=True)
 def soft_pass(start, ca, cb, n, t1, t2, fmu, radius, mass_n, mass_t1, mass_t2, mass_tw, sep,
-              inv_mass, vel, ang, impulse, peak, relv, gap, jt1, jt2, jtw, arm, farm, inv_h,
-              use_bias, friction, soft, static, relaxation):
+              inv_mass, vel, ang, impulse, peak, jt1, jt2, jtw, arm, farm, inv_h, use_bias,
+              friction, soft, static, relaxation):
     """One Gauss–Seidel pass over the manifolds: each point's normal row (soft with
     ``use_bias``: ``soft``/``static`` = (bias rate, mass scale, impulse scale, push-out cap)
     for body pairs and against scenery, each row moving ``relaxation`` × its Gauss–Seidel step
@@ -297,7 +297,7 @@ def soft_pass(start, ca, cb, n, t1, t2, fmu, radius, mass_n, mass_t1, mass_t2, m
     closes by s/h at most), then the
     twist and the tangents at the friction centre within μ·Λ (with ``friction``). ``peak``
     keeps each point's largest accumulated impulse this step (``closing`` reads it). Returns
-    the largest velocity change of a row [m/s]. ``relv`` and ``gap`` are not read."""
+    the largest velocity change of a row [m/s]."""
     count = t1.shape[0]
     largest = 0.0
     for k in range(count):
@@ -431,8 +431,8 @@ def closing(ca, cb, n, sep, peak, arm, vel, ang, relv, gap, speed):
 
 @njit(cache=True, nogil=True)
 def soft_passes(start, ca, cb, n, t1, t2, fmu, radius, mass_n, mass_t1, mass_t2, mass_tw, sep,
-                inv_mass, vel, ang, impulse, peak, relv, gap, jt1, jt2, jtw, arm, farm, inv_h,
-                use_bias, friction, soft, static, max_passes, tolerance, relaxation):
+                inv_mass, vel, ang, impulse, peak, jt1, jt2, jtw, arm, farm, inv_h, use_bias,
+                friction, soft, static, max_passes, tolerance, relaxation):
     """``soft_pass`` until no row changes a velocity by more than ``tolerance`` [m/s], at
     most ``max_passes``; returns the passes run. Repeating a soft pass converges to the
     soft rows' own solution (v + bias + γλ = 0 on every pushing row), not a stiffer one."""
@@ -440,9 +440,8 @@ def soft_passes(start, ca, cb, n, t1, t2, fmu, radius, mass_n, mass_t1, mass_t2,
     while passes < max_passes:
         passes += 1
         if soft_pass(start, ca, cb, n, t1, t2, fmu, radius, mass_n, mass_t1, mass_t2,
-                     mass_tw, sep, inv_mass, vel, ang, impulse, peak, relv, gap, jt1, jt2, jtw,
-                     arm, farm, inv_h, use_bias, friction, soft, static,
-                     relaxation) <= tolerance:
+                     mass_tw, sep, inv_mass, vel, ang, impulse, peak, jt1, jt2, jtw, arm, farm,
+                     inv_h, use_bias, friction, soft, static, relaxation) <= tolerance:
             break
     return passes
 
@@ -571,7 +570,7 @@ def _pass(b, c: BodyContacts, r: _Rows, inv_h: float, use_bias: bool, soft, stat
     return int(soft_passes(
         r.start, c.a, c.b, c.normal, r.t1, r.t2, r.fmu, r.radius, r.mass_n, r.mass_t1,
         r.mass_t2, r.mass_tw, r.sep, b.inv_mass, b.velocity, b.angular_velocity, r.impulse,
-        r.peak, r.relv, r.gap, r.jt1, r.jt2, r.jtw, r.arm, r.farm, inv_h, use_bias, friction,
+        r.peak, r.jt1, r.jt2, r.jtw, r.arm, r.farm, inv_h, use_bias, friction,
         soft, static, max_passes, st.soft_tolerance, st.soft_relaxation))
 
 
@@ -682,7 +681,7 @@ def contact_step(nb, substeps, h, gravity, soft, static, threshold, pos, quat, v
                        arm, farm)
             passes += soft_passes(start, ca, cb, n, t1, t2, fmu, radius, mass_n, mass_t1,
                                   mass_t2, mass_tw, sep, inv_mass, vel, ang, impulse, peak,
-                                  relv, gap, jt1, jt2, jtw, arm, farm, inv_h, True,
+                                  jt1, jt2, jtw, arm, farm, inv_h, True,
                                   FRICTION_IN_SOLVE, soft, static, solve_passes, tolerance,
                                   relaxation)
             # friction within the solve's cone, in this pose (``soft_energy``)
@@ -698,7 +697,7 @@ def contact_step(nb, substeps, h, gravity, soft, static, threshold, pos, quat, v
             closing(ca, cb, n, sep, peak, arm, vel, ang, relv, gap, False)
             passes += soft_passes(start, ca, cb, n, t1, t2, fmu, radius, mass_n, mass_t1,
                                   mass_t2, mass_tw, sep, inv_mass, vel, ang, impulse, peak,
-                                  relv, gap, jt1, jt2, jtw, arm, farm, inv_h, False, True,
+                                  jt1, jt2, jtw, arm, farm, inv_h, False, True,
                                   soft, static, relax_passes, tolerance, relaxation)
             soft_energy.limit_scenery(alone, start_energy, vel, ang, quat, inv_mass,
                                       inv_inertia)
