@@ -39,10 +39,11 @@ WATCHDOG = 120.0
 
 #: Largest fraction of scenes that may end a step with an overlap > 2 cm: issue 30's 1 %, of
 #: every run of scenes (the slow run's four parts of 250 each, so of its 1 000 too). Measured
-#: with the soft step (``World()``'s body stage since stop 39): seeds 1000–1999 at 120 steps,
-#: 5 of 1 000 (1263, 1420, 1650, 1781, 1941: at most 2 in a part); seeds 0–299 at 300 steps,
-#: 5 (163, 176, 217, 249, 295). With the earlier "impulses" stage it was 2 % of the joint-free
-#: and 15 % of the jointed scenes (bounds 0.07 and 0.25 then).
+#: with the soft step (``World()``'s body stage since stop 39) and a sphere's normal on a box
+#: turning with the box (``body_soft.normals``, stop 40): seeds 1000–1999 at 120 steps, 4 of
+#: 1 000 (1076, 1138, 1420, 1650: at most 2 in a part; 5 before ``normals``); seeds 0–999 at
+#: 300 steps, 8 (13 before). With the earlier "impulses" stage it was 2 % of the joint-free and
+#: 15 % of the jointed scenes (bounds 0.07 and 0.25 then).
 DEEP = 0.01
 
 
