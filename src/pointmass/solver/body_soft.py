@@ -222,12 +222,13 @@ def normals(ca, cb, n, r0a, r0b, depth0, quat, round_a, round_b, owner, ln, reac
         if b >= 0 and depth0[c] > -SPECULATIVE_MARGIN and round_a[c] != round_b[c]:
             turn = WITH_B if round_a[c] else WITH_A
         owner[c] = turn
+        if turn == FIXED:
+            continue
         nx, ny, nz = n[c, 0], n[c, 1], n[c, 2]
         reach[c, 0] = r0a[c, 0] * nx + r0a[c, 1] * ny + r0a[c, 2] * nz
         reach[c, 1] = r0b[c, 0] * nx + r0b[c, 1] * ny + r0b[c, 2] * nz
-        if turn == WITH_A or turn == WITH_B:
-            q = quat[a] if turn == WITH_A else quat[b]
-            ln[c, 0], ln[c, 1], ln[c, 2] = qrot_inv(q[0], q[1], q[2], q[3], nx, ny, nz)
+        q = quat[a] if turn == WITH_A else quat[b]
+        ln[c, 0], ln[c, 1], ln[c, 2] = qrot_inv(q[0], q[1], q[2], q[3], nx, ny, nz)
 
 
 @njit(cache=True, inline="always")
@@ -288,37 +289,31 @@ def refresh(start, ca, cb, n, la, lb, r0a, r0b, depth0, mu, inv_mass, inv_i, pos
         if -s > deepest:
             deepest = -s
         if turn == WITH_B:  # a sphere on a face: pushed where the sphere now is
-            mx, my, mz = px, py, pz
-            rb[c, 0], rb[c, 1], rb[c, 2] = mx - pos[b, 0], my - pos[b, 1], mz - pos[b, 2]
             ra[c, 0], ra[c, 1], ra[c, 2] = ax, ay, az
+            rb[c, 0], rb[c, 1], rb[c, 2] = px - pos[b, 0], py - pos[b, 1], pz - pos[b, 2]
         elif turn == WITH_A:
-            mx, my, mz = ux, uy, uz
+            ra[c, 0], ra[c, 1], ra[c, 2] = ux - pos[a, 0], uy - pos[a, 1], uz - pos[a, 2]
             rb[c, 0], rb[c, 1], rb[c, 2] = bx, by, bz
-            ra[c, 0], ra[c, 1], ra[c, 2] = mx - pos[a, 0], my - pos[a, 1], mz - pos[a, 2]
-        if turn == WITH_A or turn == WITH_B:
-            k = inv_mass[a] + _arm_mass(inv_i, a, ra[c, 0], ra[c, 1], ra[c, 2], nx, ny, nz)
-            k += inv_mass[b] + _arm_mass(inv_i, b, rb[c, 0], rb[c, 1], rb[c, 2], nx, ny, nz)
-            mass_n[c] = 1.0 / k if k > 0.0 else 0.0
-            continue
-        mx = pos[a, 0] + r0a[c, 0]
-        my = pos[a, 1] + r0a[c, 1]
-        mz = pos[a, 2] + r0a[c, 2]
-        if b >= 0:
-            # both bodies are pushed at one point between their arms' ends, weighted by
-            # inverse mass: the midpoint for equal masses, body A's own point against an
-            # immovable body, as against scenery (with the midpoint, a swept contact's point
-            # carried back to the step's start stayed behind on the wall while a ball slid
-            # along it: its push spun the ball, 156 rad/s without friction, and the ball went
-            # through the 5 cm wall, tests/physics/rigid/test_thin_wall.py)
-            w = inv_mass[a] + inv_mass[b]
-            f = inv_mass[a] / w if w > 0.0 else 0.5
-            mx = f * mx + (1.0 - f) * (pos[b, 0] + r0b[c, 0])
-            my = f * my + (1.0 - f) * (pos[b, 1] + r0b[c, 1])
-            mz = f * mz + (1.0 - f) * (pos[b, 2] + r0b[c, 2])
-            rb[c, 0], rb[c, 1], rb[c, 2] = mx - pos[b, 0], my - pos[b, 1], mz - pos[b, 2]
         else:
-            rb[c, 0], rb[c, 1], rb[c, 2] = mx, my, mz
-        ra[c, 0], ra[c, 1], ra[c, 2] = mx - pos[a, 0], my - pos[a, 1], mz - pos[a, 2]
+            mx = pos[a, 0] + r0a[c, 0]
+            my = pos[a, 1] + r0a[c, 1]
+            mz = pos[a, 2] + r0a[c, 2]
+            if b >= 0:
+                # both bodies are pushed at one point between their arms' ends, weighted by
+                # inverse mass: the midpoint for equal masses, body A's own point against an
+                # immovable body, as against scenery (with the midpoint, a swept contact's
+                # point carried back to the step's start stayed behind on the wall while a
+                # ball slid along it: its push spun the ball, 156 rad/s without friction, and
+                # the ball went through the 5 cm wall, tests/physics/rigid/test_thin_wall.py)
+                w = inv_mass[a] + inv_mass[b]
+                f = inv_mass[a] / w if w > 0.0 else 0.5
+                mx = f * mx + (1.0 - f) * (pos[b, 0] + r0b[c, 0])
+                my = f * my + (1.0 - f) * (pos[b, 1] + r0b[c, 1])
+                mz = f * mz + (1.0 - f) * (pos[b, 2] + r0b[c, 2])
+                rb[c, 0], rb[c, 1], rb[c, 2] = mx - pos[b, 0], my - pos[b, 1], mz - pos[b, 2]
+            else:
+                rb[c, 0], rb[c, 1], rb[c, 2] = mx, my, mz
+            ra[c, 0], ra[c, 1], ra[c, 2] = mx - pos[a, 0], my - pos[a, 1], mz - pos[a, 2]
         k = inv_mass[a] + _arm_mass(inv_i, a, ra[c, 0], ra[c, 1], ra[c, 2], nx, ny, nz)
         if b >= 0:
             k += inv_mass[b] + _arm_mass(inv_i, b, rb[c, 0], rb[c, 1], rb[c, 2], nx, ny, nz)
