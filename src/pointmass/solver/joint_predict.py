@@ -65,10 +65,10 @@ def end_targets(ja, jb, la, lb, pos, quat, vel, ang, inv_inertia, dt, mode, ra, 
     """For every joint the exact solve takes (``mode`` DIRECT or LOOP): ``bias`` (J, 3) ←
     Ċ_now − (C_end − K)/dt of its point block (C_end: the gap in the predicted end pose; K:
     what the step may leave of the gap the joint has now, ``keep`` (J, 3); ``xend`` (N, 3),
-    ``qend`` (N, 4) are scratch), no faster than ``speed`` [m/s] (the soft step's push-out
-    cap; ``inf``: none); only joints whose mode is at most ``top`` (LOOP: all of them;
-    DIRECT: the soft step's loops keep their targets, ``joint_soft``). Returns the largest
-    predicted excess over dt [m/s]."""
+    ``qend`` (N, 4) are scratch), closing the gap now no faster than ``speed`` [m/s] (the
+    soft step's push-out cap; ``inf``: none; the turn's sagitta is never capped); only
+    joints whose mode is at most ``top`` (LOOP: all of them; DIRECT: the soft step's loops
+    keep their targets, ``joint_soft``). Returns the largest predicted excess over dt [m/s]."""
     largest = 0.0
     for j in range(ja.shape[0]):
         if mode[j] < DIRECT_JOINT or mode[j] > top:  # Gauss–Seidel's keep their targets
@@ -100,11 +100,38 @@ def end_targets(ja, jb, la, lb, pos, quat, vel, ang, inv_inertia, dt, mode, ra, 
             cx += vel[b, 0] + ang[b, 1] * rb[j, 2] - ang[b, 2] * rb[j, 1]
             cy += vel[b, 1] + ang[b, 2] * rb[j, 0] - ang[b, 0] * rb[j, 2]
             cz += vel[b, 2] + ang[b, 0] * rb[j, 1] - ang[b, 1] * rb[j, 0]
-        bias[j, 0] = cx - gx / dt
-        bias[j, 1] = cy - gy / dt
-        bias[j, 2] = cz - gz / dt
-        size = math.sqrt(bias[j, 0] ** 2 + bias[j, 1] ** 2 + bias[j, 2] ** 2)
+        if speed == math.inf:
+            bias[j, 0] = cx - gx / dt
+            bias[j, 1] = cy - gy / dt
+            bias[j, 2] = cz - gz / dt
+            continue
+        # Capped (the soft step): the target is −(C_now − K)/dt − Δ/dt, Δ = C_end − C_now −
+        # Ċ_now·dt being what the turn adds to the straight-line motion (the sagitta). Only
+        # the first part closes a gap, and only it is capped at the push-out speed. The
+        # second keeps a turning arm's joint point on its arc: a ball whirled on a 5 m arm at
+        # 20 rad/s needs Δ/h ≈ ½ω²·L·h = 4.2 m/s, and with the whole target capped at 3 m/s
+        # its joint opened a little more every substep (tests/physics/rigid/
+        # test_joint_whirl.py). C_now (nx, ny, nz) is the gap in the pose now.
+        qa = quat[a]
+        nax, nay, naz = qrot(qa[0], qa[1], qa[2], qa[3], la[j, 0], la[j, 1], la[j, 2])
+        nx, ny, nz = -(pos[a, 0] + nax), -(pos[a, 1] + nay), -(pos[a, 2] + naz)
+        if b >= 0:
+            qb = quat[b]
+            nbx, nby, nbz = qrot(qb[0], qb[1], qb[2], qb[3], lb[j, 0], lb[j, 1], lb[j, 2])
+            nx += pos[b, 0] + nbx
+            ny += pos[b, 1] + nby
+            nz += pos[b, 2] + nbz
+        else:
+            nx += lb[j, 0]
+            ny += lb[j, 1]
+            nz += lb[j, 2]
+        # the gap to close now, over dt, no faster than ``speed``
+        ux, uy, uz = (nx - keep[j, 0]) / dt, (ny - keep[j, 1]) / dt, (nz - keep[j, 2]) / dt
+        size = math.sqrt(ux * ux + uy * uy + uz * uz)
         if size > speed:
-            for k in range(3):
-                bias[j, k] *= speed / size
+            ux, uy, uz = ux * speed / size, uy * speed / size, uz * speed / size
+        # −Δ/dt = Ċ_now − (C_end − C_now)/dt
+        bias[j, 0] = -ux + cx - (gx + keep[j, 0] - nx) / dt
+        bias[j, 1] = -uy + cy - (gy + keep[j, 1] - ny) / dt
+        bias[j, 2] = -uz + cz - (gz + keep[j, 2] - nz) / dt
     return largest

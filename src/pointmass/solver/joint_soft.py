@@ -73,9 +73,14 @@ made so that it cannot add what the solve does not ask for:
   step). At h = dt/4 the alignment mode it was for (a 50-box chain's top links at ω·dt ≈ 2.5)
   has ω·h < 1, where it added nothing anyway.
 - The aim at the end pose: Newton's first step is not bounded (a long arm turning fast in a
-  substep; with the two above fixed, seeds 53 and 77 still passed 1e4 m/s). Its target is
-  now capped at the push-out speed, as the bias is (``JointRows.speed``): a joint that a
-  drift would open by more is closed over several substeps, not thrown shut.
+  substep; with the two above fixed, seeds 53 and 77 still passed 1e4 m/s). The part of its
+  target that closes the gap the joint has now is capped at the push-out speed, as the bias
+  is (``JointRows.speed``): a joint open by more is closed over several substeps, not thrown
+  shut. The rest, the sagitta's rate that keeps a turning arm's joint point on its arc, is
+  not capped: capped with it, a ball whirled on a 5 m arm at 20 rad/s (½·ω²·L·h = 4.2 m/s)
+  opened its joint a little more every substep (12.5 cm, half its energy lost in 10 s), and
+  light bodies on long arms in random scenes tore their joints by metres
+  (``joint_predict.end_targets``; tests/physics/rigid/test_joint_whirl.py).
 
 Seeds 33 and 53 reached 4.8e3 and 4.2e3 m/s then (1.4 g and 2 g boxes spun by their over-
 constrained pairs), the others ≤ 540 m/s. The joint stages add energy of their own, O((ω·h)²)
