@@ -58,9 +58,11 @@ def test_ball_whirled_about_a_world_anchor(joint, arm, spin):
                                   mass=1.0)
     world.bodies.angular_velocity[bob] = (0.0, 0.0, spin)
     world.add(joint(bob, (-arm, 0.0, 0.0), None, (0.0, 0.0, 0.0), axis=(0.0, 0.0, 1.0)))
-    gap, e0, e1, _, _ = _run(world)
+    gap, e0, e1, l0, l1 = _run(world)
     assert gap < GAP
     assert e0 * (1.0 - DRIFT) <= e1 <= e0 * (1.0 + 1e-12)
+    # the joint's pull passes through the anchor: no torque about it
+    assert np.linalg.norm(l1 - l0) <= DRIFT * np.linalg.norm(l0)
     b = world.bodies
     assert np.linalg.norm(b.position[bob]) == pytest.approx(arm, abs=GAP)
     assert np.linalg.norm(b.velocity[bob]) == pytest.approx(spin * arm, rel=DRIFT)
