@@ -111,16 +111,15 @@ def end_targets(ja, jb, la, lb, pos, quat, vel, ang, inv_inertia, dt, mode, ra, 
         # second keeps a turning arm's joint point on its arc: a ball whirled on a 5 m arm at
         # 20 rad/s needs Δ/h ≈ ½ω²·L·h = 4.2 m/s, and with the whole target capped at 3 m/s
         # its joint opened a little more every substep (tests/physics/rigid/
-        # test_joint_whirl.py). C_now (nx, ny, nz) is the gap in the pose now.
-        qa = quat[a]
-        nax, nay, naz = qrot(qa[0], qa[1], qa[2], qa[3], la[j, 0], la[j, 1], la[j, 2])
-        nx, ny, nz = -(pos[a, 0] + nax), -(pos[a, 1] + nay), -(pos[a, 2] + naz)
+        # test_joint_whirl.py). C_now (nx, ny, nz) is the gap in the pose now, from the
+        # rows' arms (``prepare``d in this pose: the passes do not move the bodies).
+        nx = -(pos[a, 0] + ra[j, 0])
+        ny = -(pos[a, 1] + ra[j, 1])
+        nz = -(pos[a, 2] + ra[j, 2])
         if b >= 0:
-            qb = quat[b]
-            nbx, nby, nbz = qrot(qb[0], qb[1], qb[2], qb[3], lb[j, 0], lb[j, 1], lb[j, 2])
-            nx += pos[b, 0] + nbx
-            ny += pos[b, 1] + nby
-            nz += pos[b, 2] + nbz
+            nx += pos[b, 0] + rb[j, 0]
+            ny += pos[b, 1] + rb[j, 1]
+            nz += pos[b, 2] + rb[j, 2]
         else:
             nx += lb[j, 0]
             ny += lb[j, 1]
