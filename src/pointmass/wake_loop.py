@@ -96,13 +96,16 @@ def wake_particles(world: World, marked: np.ndarray) -> np.ndarray:
     return woken
 
 
-def find_body_rows(world: World, h: float, dt: float, acc: np.ndarray, planes: list):
+def find_body_rows(world: World, h: float, dt: float, acc: np.ndarray, planes: list,
+                   opening: float | None = None):
     """This substep's body rows, then the particle–body rows; returns the packed view (or
     None) and ``acc`` extended to it. A sleeping island that a row wakes gets its first
-    kick (of h) and the rows are made again, until no row touches a sleeping body that
+    kick (of ``opening``, the soft step's leapfrog half kick; of h when None: the substep)
+    and the rows are made again, until no row touches a sleeping body that
     should wake. ``planes``: the world's ``Plane``s (``World._planes``, found once a step)."""
     b = world.bodies
     p = world.particles
+    first = h if opening is None else opening
     links = body_links(world) if world._sleep else None
     exclude = world.joints.pair_keys(b.count) if world.joints else None
     while True:
@@ -131,8 +134,8 @@ def find_body_rows(world: World, h: float, dt: float, acc: np.ndarray, planes: l
                                         float(dt), out):
                 was = b.awake.copy()
                 wake_particles(world, out)
-                if (b.awake & ~was).any():  # their first kick (h: the soft step's substep)
-                    world._kick(h, b.awake & ~was)
+                if (b.awake & ~was).any():  # their first kick
+                    world._kick(first, b.awake & ~was, h)
                 continue  # again, with the woken
             slot = c.a >= b.count
             reach = np.zeros(c.a.shape[0], np.bool_)
@@ -146,7 +149,7 @@ def find_body_rows(world: World, h: float, dt: float, acc: np.ndarray, planes: l
         if not woken.any():
             sleeping.leave_sleepers_out(b, world.body_contacts, packed)
             return packed, full
-        world._kick(h, b.wake_islands(np.unique(b.island[woken])))
+        world._kick(first, b.wake_islands(np.unique(b.island[woken])), h)
 
 
 def body_links(world: World) -> np.ndarray:

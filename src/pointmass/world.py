@@ -576,8 +576,14 @@ class World:
         integrated = p.awake.copy() if p.count else None
         planes = self._planes()  # found once a step
         try:  # the first kicks (here, and of woken bodies); ``body_soft`` gives the others
-            self._kick(h, b.awake)
-            packed, acc = wake.find_body_rows(self, h, dt, acc, planes)
+            # the leapfrog (``body_soft``): a body goes on from the half-step velocity its
+            # last step drifted with, kicked by h; one whose velocity that step did not leave
+            # (just added, set by hand, woken) starts from it with a half kick
+            fresh = self._open_leapfrog()
+            self._kick(h, b.awake & ~fresh)
+            if fresh.any():
+                self._kick(h / 2, b.awake & fresh, h)
+            packed, acc = wake.find_body_rows(self, h, dt, acc, planes, opening=h / 2)
             self._packed = packed  # the islands read its particles (``_fall_asleep``)
             view = b
             if packed is not None:
@@ -601,12 +607,39 @@ class World:
         # what the step's one collision pass did not foresee: a fast body is put back where
         # it first meets a static body or a plane (``solver/body_continuous.py``); only an
         # awake body can be fast
+        turned = None
         if b.awake.any():
             exclude = self.joints.pair_keys(b.count) if self.joints else None
             anchored = [j.a for j in self.joints.items if j.b < 0] if self.joints else None
-            sweep_back(b, planes, exclude, x_start, q_start, dt, anchored, st)
+            # the sweep reads the velocities the step drifted with (the leapfrog's half-step
+            # ones); the step's synchronised ones are put back after it
+            synced = b.velocity.copy(), b.angular_velocity.copy()
+            b.velocity[:], b.angular_velocity[:] = b.half_velocity, b.half_spin
+            if sweep_back(b, planes, exclude, x_start, q_start, dt, anchored, st):
+                turned = ((b.velocity != b.half_velocity).any(axis=1)
+                          | (b.angular_velocity != b.half_spin).any(axis=1))
+                synced[0][turned] = b.velocity[turned]
+                synced[1][turned] = b.angular_velocity[turned]
+            b.velocity[:], b.angular_velocity[:] = synced
+        body_soft.leave_step(b.awake, b.velocity, b.angular_velocity, b.left_velocity,
+                             b.left_spin)  # what this step left (``_open_leapfrog``)
+        if turned is not None:
+            # a body put back with its velocity turned (its own-frame spin kept) starts the
+            # next step afresh from it: its half-step velocity was of the pose before
+            b.left_velocity[turned] = np.inf
         self._body_rows = rows
         return rows
+
+    def _open_leapfrog(self) -> np.ndarray:
+        """The soft step's leapfrog opening (``body_soft``, "Leapfrog"): each awake body whose
+        velocity and spin are still the ones the last step left goes on from the half-step
+        velocity and spin that step drifted with; returns the mask of the others, which start
+        from their velocity with a half kick."""
+        b = self.bodies
+        fresh = np.empty(b.count, np.bool_)
+        body_soft.open_step(b.awake, b.velocity, b.angular_velocity, b.left_velocity,
+                            b.left_spin, b.half_velocity, b.half_spin, fresh)
+        return fresh
 
     def _planes(self) -> list[Plane]:
         """The world's ``Plane``s (and ``Ground``s) among its contact generators: what the
@@ -675,14 +708,17 @@ class World:
             generator.apply(b, h)
         return force_acceleration(b.inv_mass, b.force, self._gravity)
 
-    def _kick(self, dt: float, which: np.ndarray) -> None:
+    def _kick(self, dt: float, which: np.ndarray, drift: float = 0.0) -> None:
         """The velocity half of the bodies' integration over ``dt``, for the bodies of mask
         ``which``: gravity, forces, torques and damping (the soft step's first substep; its
-        later substeps' kicks are ``body_soft.kick``, with the same forces)."""
+        later substeps' kicks are ``body_soft.kick``, with the same forces). ``drift``: the
+        drift that follows when it is not ``dt`` (a leapfrog's opening half kick), for the
+        spin's cap (``integrate_velocities``)."""
         b = self.bodies
         spun = integrate_velocities(b.velocity, b.angular_velocity, b.force, b.torque,
                                     b.inv_mass, b.inv_inertia, b.inv_inertia_world,
-                                    b.linear_damping, b.angular_damping, self._gravity, dt, which)
+                                    b.linear_damping, b.angular_damping, self._gravity, dt, which,
+                                    drift)
         if spun >= 0:
             raise spin_error(b, spun, dt, self.time)
 

@@ -28,8 +28,12 @@ _FIELDS_1 = ("inv_mass", "linear_damping", "angular_damping", "friction", "resti
 #: Sleep state (``islands.py``, ``sleep.py``): kept in snapshots like the rest.
 _SLEEP_FIELDS = ("awake", "sleep_time", "island", "still_position", "still_orientation")
 _DTYPES = {"shape": np.int64, "island": np.int64, "awake": np.bool_, "serial": np.int64}
+#: The soft step's leapfrog (``solver/body_soft.py``, "Leapfrog"): the half-step velocity
+#: and spin each body's last drift moved it with, and the (synchronised) velocity and spin that
+#: step left; infinite where no step left one (a body just added). Kept in snapshots like the rest.
+_LEAPFROG_FIELDS = ("half_velocity", "half_spin", "left_velocity", "left_spin")
 _ALL_FIELDS = (*_FIELDS_3, *_FIELDS_1, "orientation", "inv_inertia_world", "shape",
-               *_SLEEP_FIELDS, "serial")
+               *_SLEEP_FIELDS, "serial", *_LEAPFROG_FIELDS)
 
 
 class Bodies(RowViews):
@@ -106,7 +110,7 @@ class Bodies(RowViews):
         shapes.update(orientation=(capacity, 4), inv_inertia_world=(capacity, 3, 3),
                       shape=(capacity,), **dict.fromkeys(_SLEEP_FIELDS[:3], (capacity,)),
                       still_position=(capacity, 3), still_orientation=(capacity, 4),
-                      serial=(capacity,))
+                      serial=(capacity,), **dict.fromkeys(_LEAPFROG_FIELDS, (capacity, 3)))
         for name, shape in shapes.items():
             arr: np.ndarray = np.zeros(shape, dtype=_DTYPES.get(name, np.float64))
             old = getattr(self, "_" + name, None)
@@ -130,6 +134,12 @@ class Bodies(RowViews):
     orientation = view("orientation", "Unit quaternions (w, x, y, z), (N, 4).")
     velocity = view("velocity", "Linear velocity [m/s], (N, 3).")
     angular_velocity = view("angular_velocity", "World angular velocity [rad/s], (N, 3).")
+    half_velocity = view("half_velocity", "The soft step's half-step velocity [m/s] (leapfrog's "
+                         "v at t - h/2: the last drift's), (N, 3).")
+    half_spin = view("half_spin", "The soft step's half-step angular velocity [rad/s], (N, 3).")
+    left_velocity = view("left_velocity", "The velocity the last soft step left [m/s] (inf: "
+                         "none), (N, 3): another one was set since.")
+    left_spin = view("left_spin", "The angular velocity the last soft step left, (N, 3).")
     force = view("force", "Force accumulator [N], (N, 3).")
     torque = view("torque", "Torque accumulator [N m], (N, 3).")
     inv_mass = view("inv_mass", "Inverse mass [1/kg], (N,).")
@@ -226,6 +236,7 @@ class Bodies(RowViews):
         self._still_orientation[i] = quat
         self._serial[i] = self._next_serial
         self._next_serial += 1
+        self._left_velocity[i] = np.inf  # no step left its velocity: it opens with a half kick
         return i
 
     def add_sphere(self, radius: float, position=(0.0, 0.0, 0.0), velocity=(0.0, 0.0, 0.0),
@@ -341,6 +352,8 @@ class Bodies(RowViews):
             self._island[:n] = -1
             self._still_position[:n] = snap["position"]
             self._still_orientation[:n] = snap["orientation"]
+        if "left_velocity" not in snap:  # a snapshot from before the leapfrog: fresh
+            self._left_velocity[:n] = np.inf
         for name, arr in snap.items():
             getattr(self, "_" + name)[:n] = arr
 

@@ -49,13 +49,14 @@ def force_acceleration(inv_mass, force, g):
 
 @njit(cache=True, nogil=True)
 def integrate_velocities(vel, ang, force, torque, inv_mass, inv_inertia, inv_inertia_world,
-                         lin_damping, ang_damping, g, dt, awake):
+                         lin_damping, ang_damping, g, dt, awake, drift=0.0):
     """The kick for every body with ``awake`` (N,) True (a sleeping body keeps v = ω = 0).
     Gravity g [m/s²] (3,) acts only on bodies of finite mass, and a torque only about axes of
     finite inertia; bodies of infinite mass keep their velocity (kinematic). Returns the first
     body whose spin's size is not finite (left as it was), or -1; a finite spin past
-    ``MAX_ROTATION`` a step is slowed to it."""
-    cap = MAX_ROTATION / dt
+    ``MAX_ROTATION`` a drift is slowed to it (the drift ``dt``, or ``drift`` [s] when given:
+    a leapfrog's half kick of dt/2 is followed by a drift of dt)."""
+    cap = MAX_ROTATION / (drift if drift > 0.0 else dt)
     for i in range(vel.shape[0]):
         if not awake[i]:
             continue

@@ -129,8 +129,10 @@ def test_r7_a_box_resting_on_a_box_gets_four_points_on_the_face(stage):
     corners keep pushing and it does not rock (measured 1.5e-6 rad in the first 30 steps: a
     period-2 rock of the Gauss–Seidel order that dies out, 1e-10 rad by step 100), where one
     point (Cyclone) lets it rock by degrees; its
-    step-end velocity is what the relax passes leave, which stop once no row changes a
-    velocity by more than ``SolverSettings.soft_tolerance`` = 1e-5 m/s (measured 7.7e-6 m/s)."""
+    step-end velocity is what the relax passes of its closing projection leave (``body_soft``,
+    "Leapfrog"), which stop once no row changes a velocity by more than
+    ``SolverSettings.soft_tolerance`` = 1e-5 m/s (measured 1.3e-5 m/s; 7.7e-6 before the
+    leapfrog, from the substeps' own relax)."""
     world = pm.World(body_step=stage)
     world.add(pm.Ground(friction=0.5))
     world.add_body(Box((0.5, 0.5, 0.5)), (0.0, 0.5, 0.0), mass=1.0)
@@ -148,7 +150,7 @@ def test_r7_a_box_resting_on_a_box_gets_four_points_on_the_face(stage):
     omega = 2.0 * math.pi * min(DEFAULTS.contact_hertz, DEFAULTS.contact_hertz_cap / h)
     sag = 9.81 / (4 * (1.0 / 8.0) * omega**2)
     assert tilt < sag / 0.5
-    assert np.abs(world.bodies.velocity).max() < DEFAULTS.soft_tolerance
+    assert np.abs(world.bodies.velocity).max() < 2.0 * DEFAULTS.soft_tolerance
 
 
 @pytest.mark.parametrize("stage", ["impulses", "soft"])

@@ -48,7 +48,9 @@ def test_spinning_box_stops_after_omega0_squared_over_2_alpha(omega0, mu):
     assert angle == pytest.approx(omega0 ** 2 / (2.0 * alpha), rel=0.01)
     assert steps * DT == pytest.approx(omega0 / alpha, abs=2 * DT)
     moved = world.bodies.position[box.index] - start
-    assert np.hypot(moved[0], moved[2]) < 1e-9
+    # measured 5.4e-9 and 9.7e-9 m (< 1e-9 before the leapfrog: ω set by hand starts the box
+    # afresh with a half kick against a whole substep's warm start, ``body_soft``)
+    assert np.hypot(moved[0], moved[2]) < 2e-8
 
 
 def test_a_box_on_the_floor_is_one_manifold_of_four_points():
