@@ -14,16 +14,22 @@ from pointmass.rigid.step import integrate_positions, integrate_velocities, step
 DEFAULTS = pm.SolverSettings()
 
 
-def test_free_bodies_move_exactly_as_the_stepper_moves_them():
-    """A free body in the "impulses" stage moves bit for bit as the stand-alone stepper moves
-    it (semi-implicit Euler over dt: in free fall y(t) = y₀ + v₀t − g·t²/2 − g·t·dt/2)."""
-    world = pm.World(gravity=(0.0, -9.81, 0.0), body_step="impulses")
+def _tumbling_box(world):
+    """A tumbling, drifting box in ``world`` and its twin alone in a ``Bodies`` store."""
     q = (0.9, 0.1, -0.3, 0.2)
     body = world.add_body(Box((0.3, 0.5, 0.9)), (1.0, 2.0, 3.0), q, velocity=(1.0, 2.0, 0.0),
                           angular_velocity=(0.3, 4.0, 0.2), mass=2.0)
     alone = Bodies()
     alone.add_box((0.3, 0.5, 0.9), (1.0, 2.0, 3.0), q, velocity=(1.0, 2.0, 0.0),
                   angular_velocity=(0.3, 4.0, 0.2), mass=2.0)
+    return body, alone
+
+
+def test_free_bodies_move_exactly_as_the_stepper_moves_them():
+    """A free body in the "impulses" stage moves bit for bit as the stand-alone stepper moves
+    it (semi-implicit Euler over dt: in free fall y(t) = y₀ + v₀t − g·t²/2 − g·t·dt/2)."""
+    world = pm.World(gravity=(0.0, -9.81, 0.0), body_step="impulses")
+    body, alone = _tumbling_box(world)
     for _ in range(120):
         body.add_torque((0.0, 0.0, 0.5))
         stats = world.step(1 / 60)
@@ -71,12 +77,7 @@ def test_free_bodies_in_the_soft_step_move_as_leapfrog_and_fall_on_the_exact_par
     reported the velocity of half a substep earlier)."""
     g = np.array([0.0, -9.81, 0.0])
     world = pm.World(gravity=tuple(g))
-    q = (0.9, 0.1, -0.3, 0.2)
-    body = world.add_body(Box((0.3, 0.5, 0.9)), (1.0, 2.0, 3.0), q, velocity=(1.0, 2.0, 0.0),
-                          angular_velocity=(0.3, 4.0, 0.2), mass=2.0)
-    alone = Bodies()
-    alone.add_box((0.3, 0.5, 0.9), (1.0, 2.0, 3.0), q, velocity=(1.0, 2.0, 0.0),
-                  angular_velocity=(0.3, 4.0, 0.2), mass=2.0)
+    body, alone = _tumbling_box(world)
     half: list = []
     for _ in range(120):
         body.add_torque((0.0, 0.0, 0.5))
