@@ -607,26 +607,19 @@ class World:
         # what the step's one collision pass did not foresee: a fast body is put back where
         # it first meets a static body or a plane (``solver/body_continuous.py``); only an
         # awake body can be fast
-        turned = None
         if b.awake.any():
             exclude = self.joints.pair_keys(b.count) if self.joints else None
             anchored = [j.a for j in self.joints.items if j.b < 0] if self.joints else None
             # the sweep reads the velocities the step drifted with (the leapfrog's half-step
-            # ones); the step's synchronised ones are put back after it
-            synced = b.velocity.copy(), b.angular_velocity.copy()
-            b.velocity[:], b.angular_velocity[:] = b.half_velocity, b.half_spin
-            if sweep_back(b, planes, exclude, x_start, q_start, dt, anchored, st):
-                turned = ((b.velocity != b.half_velocity).any(axis=1)
-                          | (b.angular_velocity != b.half_spin).any(axis=1))
-                synced[0][turned] = b.velocity[turned]
-                synced[1][turned] = b.angular_velocity[turned]
-            b.velocity[:], b.angular_velocity[:] = synced
-        body_soft.leave_step(b.awake, b.velocity, b.angular_velocity, b.left_velocity,
-                             b.left_spin)  # what this step left (``_open_leapfrog``)
-        if turned is not None:
-            # a body put back with its velocity turned (its own-frame spin kept) starts the
-            # next step afresh from it: its half-step velocity was of the pose before
-            b.left_velocity[turned] = np.inf
+            # ones); the step's synchronised ones wait in ``left_velocity`` meanwhile
+            body_soft.before_sweep(b.velocity, b.angular_velocity, b.half_velocity,
+                                   b.half_spin, b.left_velocity, b.left_spin)
+            sweep_back(b, planes, exclude, x_start, q_start, dt, anchored, st)
+            body_soft.after_sweep(b.awake, b.velocity, b.angular_velocity, b.half_velocity,
+                                  b.half_spin, b.left_velocity, b.left_spin)
+        else:
+            body_soft.leave_step(b.awake, b.velocity, b.angular_velocity, b.left_velocity,
+                                 b.left_spin)  # what this step left (``_open_leapfrog``)
         self._body_rows = rows
         return rows
 

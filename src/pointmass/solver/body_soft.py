@@ -81,15 +81,16 @@ brackets): towers
 of 5, 10, 20, 30 boxes drift 0.06, 0.10, 1.3, 1.1 mm sideways in 60 s (20 and 30 fall); the
 210-box pyramid's apex 0.2 mm, 0.28 mm/s at 10 s (8.0 mm); two boxes colliding without gravity
 keep linear and angular momentum to 1.4e-13 (3.5e-3 with e 0, μ 0); a 1 m box dropped from
-0.9–1.1 m with e 0.5 rebounds to 0.2426–0.2474·h since the leapfrog (0.27–0.31·h; at stop 41
-0.2416–0.2499·h, the semi-implicit flight at h losing h·v/2 of height falling and rising). The tests of the earlier
-stage's exact figures name their stage and are re-derived for this one (tests/physics/rigid).
-Collision runs once a step, so fast bodies could end steps deep in what no row followed: the
-world's continuous stage after this step (``body_continuous``) moves them back to their time
-of impact with static bodies and planes (no box passes the thin wall) and parts pairs of a
-fast and a moving body that a step left deep; 7 of the 1 000 random scenes of the slow
-seeds (1000–1999, 120 steps) and 9 of seeds 0–999 at 300 steps (stop 42) still end a step
-deep (issue 30's bound: 1 %), most a heavy body on a gram one (Gauss–Seidel converges at the mass ratio's rate).
+0.9–1.1 m with e 0.5 rebounds to 0.2426–0.2474·h since the leapfrog (0.27–0.31·h; at stop
+41 0.2416–0.2499·h, the semi-implicit flight at h losing h·v/2 of height falling and rising).
+The tests of the earlier stage's exact figures name their stage and are re-derived for this
+one (tests/physics/rigid). Collision runs once a step, so fast bodies could end steps deep in
+what no row followed: the world's continuous stage after this step (``body_continuous``)
+moves them back to their time of impact with static bodies and planes (no box passes the
+thin wall) and parts pairs of a fast and a moving body that a step left deep; 7 of the 1 000
+random scenes of the slow seeds (1000–1999, 120 steps) and 9 of seeds 0–999 at 300 steps
+(stop 42) still end a step deep (issue 30's bound: 1 %), most a heavy body on a gram one
+(Gauss–Seidel converges at the mass ratio's rate).
 Force-free random scenes gain no kinetic energy in a step, with joints or without (issue 30's
 1e-9; ``soft_energy``: the restitution's budget, the friction warm start clamped to the
 solve's cone before the drift, bodies on scenery alone and islands that joints or contacts
@@ -662,6 +663,38 @@ def leave_step(awake, vel, ang, left_v, left_w):
         for u in range(3):
             left_v[i, u] = vel[i, u] if awake[i] else np.inf
             left_w[i, u] = ang[i, u]
+
+
+@njit(cache=True, nogil=True)
+def before_sweep(vel, ang, half_v, half_w, left_v, left_w):
+    """Before the continuous stage (``World._substep_bodies_soft``): the synchronised
+    velocities the step left wait in ``left_v``, ``left_w``, and the bodies take the
+    half-step ones their last drift moved with, which the sweep reads (``after_sweep``)."""
+    for i in range(vel.shape[0]):
+        for u in range(3):
+            left_v[i, u] = vel[i, u]
+            left_w[i, u] = ang[i, u]
+            vel[i, u] = half_v[i, u]
+            ang[i, u] = half_w[i, u]
+
+
+@njit(cache=True, nogil=True)
+def after_sweep(awake, vel, ang, half_v, half_w, left_v, left_w):
+    """After the continuous stage: each body takes back its synchronised velocity, and
+    ``left_v``, ``left_w`` keep it (``leave_step``), but for a body the sweep put back with its
+    velocity turned (its own-frame spin kept): it keeps the sweep's and starts the next step
+    afresh from it (marked inf; its half-step velocity was of the pose before)."""
+    for i in range(vel.shape[0]):
+        turned = False
+        for u in range(3):
+            if vel[i, u] != half_v[i, u] or ang[i, u] != half_w[i, u]:
+                turned = True
+        for u in range(3):
+            if not turned:
+                vel[i, u] = left_v[i, u]
+                ang[i, u] = left_w[i, u]
+            if turned or not awake[i]:
+                left_v[i, u] = np.inf
 
 
 # --- the step ----------------------------------------------------------------------------------
