@@ -90,6 +90,10 @@ class Bodies(RowViews):
     _still_position: np.ndarray
     _still_orientation: np.ndarray
     _serial: np.ndarray
+    _half_velocity: np.ndarray
+    _half_spin: np.ndarray
+    _left_velocity: np.ndarray
+    _left_spin: np.ndarray
 
     def __init__(self, capacity: int = 16) -> None:
         self._count = 0
