@@ -360,7 +360,8 @@ def kick(nb, vel, ang, force, torque, start, pos, turn, inv_mass, inv_inertia, i
     spring's equal and opposite pair keeps Σ x × p + Iω exactly. (With τ held while the centre
     moves, the pair's two points of application are carried apart across its line of action:
     two boxes on a damped spring, 2.5 s at dt 1/240, gained 3.3e-3 of angular momentum, |L|
-    1.27; 1e-13 this way.)"""
+    1.27; 1e-13 this way.) ``drift``: the drift after this kick when it is not ``h`` (the
+    leapfrog's closing half kick), for the spin's cap (``integrate_velocities``)."""
     for i in range(nb):
         fx, fy, fz = force[i, 0], force[i, 1], force[i, 2]
         dx = pos[i, 0] - start[i, 0]
