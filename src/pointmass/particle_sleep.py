@@ -379,7 +379,8 @@ def fall_asleep(bodies, body_contacts, selected, body_links, particles, contacts
         isl.still_timers(b.position, b.orientation, extent, b.inv_mass > 0.0, b.awake,
                          b.still_position, b.still_orientation, b.sleep_time, float(dt),
                          reach, isl.TIME_TO_SLEEP)
-        still += int(np.count_nonzero(b.sleep_time >= isl.TIME_TO_SLEEP))
+        # awake ones alone: a sleeper's still-time stays where it fell asleep
+        still += int(np.count_nonzero(b.awake & (b.sleep_time >= isl.TIME_TO_SLEEP)))
     if not still:
         return None, longest  # nothing has been still long enough: no island can fall asleep
     body_links = body_links()

@@ -569,9 +569,15 @@ class World:
         b = self.bodies
         st = self.solver.settings
         h = dt / st.soft_substeps
-        x_start, q_start = b.position.copy(), b.orientation.copy()  # the sweep's start
         kept, acc = self._apply_body_forces(h)  # for the first substep (and found again)
         p = self.particles
+        if not b.awake.any() and not (p.count and p.awake.any()):
+            # everything asleep, and no force woke it: no body and no particle can move or
+            # touch anything this step, so there is no row to find and nothing to solve
+            if kept is not None:
+                b.force[:], b.torque[:] = kept
+            return self._stay_asleep()
+        x_start, q_start = b.position.copy(), b.orientation.copy()  # the sweep's start
         # the particles the integration moved (and kicked by dt); none: no packed view
         integrated = p.awake.copy() if p.count else None
         planes = self._planes()  # found once a step
@@ -620,6 +626,23 @@ class World:
         else:
             body_soft.leave_step(b.awake, b.velocity, b.angular_velocity, b.left_velocity,
                                  b.left_spin)  # what this step left (``_open_leapfrog``)
+        self._body_rows = rows
+        return rows
+
+    def _stay_asleep(self) -> body_soft.SoftRows:
+        """The soft body stage of a substep in which every body and particle sleeps: what the
+        whole stage leaves then (no rows, no impulses kept, each sleeper's half-step and last
+        velocity its own (rest) and none left), without its passes over empty work."""
+        b = self.bodies
+        if self.body_contacts.a.shape[0]:
+            self.body_contacts.resize(0)
+        self.body_impulses.clear()
+        self._packed = None
+        b.half_velocity[:] = b.velocity
+        b.half_spin[:] = b.angular_velocity
+        body_soft.leave_step(b.awake, b.velocity, b.angular_velocity, b.left_velocity,
+                             b.left_spin)
+        rows = body_soft.SoftRows(self.body_contacts)
         self._body_rows = rows
         return rows
 

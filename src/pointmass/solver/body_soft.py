@@ -531,7 +531,18 @@ def soft_passes(start, ca, cb, n, t1, t2, fmu, radius, mass_n, mass_t1, mass_t2,
                 friction, soft, static, max_passes, tolerance, relaxation):
     """``soft_pass`` until no row changes a velocity by more than ``tolerance`` [m/s], at
     most ``max_passes``; returns the passes run. Repeating a soft pass converges to the
-    soft rows' own solution (v + bias + γλ = 0 on every pushing row), not a stiffer one."""
+    soft rows' own solution (v + bias + γλ = 0 on every pushing row), not a stiffer one.
+    (Borrowed views, ``borrow.py``: each pass's call counts no references.)"""
+    start, ca, cb, n, t1, t2 = (borrowed(start), borrowed(ca), borrowed(cb), borrowed(n),
+                                borrowed(t1), borrowed(t2))
+    fmu, radius, mass_n, mass_t1 = borrowed(fmu), borrowed(radius), borrowed(mass_n), borrowed(
+        mass_t1)
+    mass_t2, mass_tw, sep, inv_mass = (borrowed(mass_t2), borrowed(mass_tw), borrowed(sep),
+                                       borrowed(inv_mass))
+    vel, ang, impulse, peak = borrowed(vel), borrowed(ang), borrowed(impulse), borrowed(peak)
+    jt1, jt2, jtw, arm, farm = (borrowed(jt1), borrowed(jt2), borrowed(jtw), borrowed(arm),
+                                borrowed(farm))
+    soft, static = borrowed(soft), borrowed(static)
     passes = 0
     while passes < max_passes:
         passes += 1
