@@ -585,10 +585,7 @@ class World:
             # the leapfrog (``body_soft``): a body goes on from the half-step velocity its
             # last step drifted with, kicked by h; one whose velocity that step did not leave
             # (just added, set by hand, woken) starts from it with a half kick
-            fresh = self._open_leapfrog()
-            self._kick(h, b.awake & ~fresh)
-            if fresh.any():
-                self._kick(h / 2, b.awake & fresh, h)
+            self._open_leapfrog(h)
             packed, acc = wake.find_body_rows(self, h, dt, acc, planes, opening=h / 2)
             self._packed = packed  # the islands read its particles (``_fall_asleep``)
             view = b
@@ -646,16 +643,18 @@ class World:
         self._body_rows = rows
         return rows
 
-    def _open_leapfrog(self) -> np.ndarray:
-        """The soft step's leapfrog opening (``body_soft``, "Leapfrog"): each awake body whose
-        velocity and spin are still the ones the last step left goes on from the half-step
-        velocity and spin that step drifted with; returns the mask of the others, which start
-        from their velocity with a half kick."""
+    def _open_leapfrog(self, h: float) -> None:
+        """The soft step's leapfrog opening (``body_soft``, "Leapfrog") and its first kick:
+        each awake body whose velocity and spin are still the ones the last step left goes on
+        from the half-step velocity and spin that step drifted with, kicked by ``h``; the
+        others start from their velocity with a half kick."""
         b = self.bodies
-        fresh = np.empty(b.count, np.bool_)
-        body_soft.open_step(b.awake, b.velocity, b.angular_velocity, b.left_velocity,
-                            b.left_spin, b.half_velocity, b.half_spin, fresh)
-        return fresh
+        spun, half = body_soft.open_and_kick(
+            b.awake, b.velocity, b.angular_velocity, b.left_velocity, b.left_spin,
+            b.half_velocity, b.half_spin, b.force, b.torque, b.inv_mass, b.inv_inertia,
+            b.inv_inertia_world, b.linear_damping, b.angular_damping, self._gravity, h)
+        if spun >= 0:
+            raise spin_error(b, spun, h / 2 if half else h, self.time)
 
     def _planes(self) -> list[Plane]:
         """The world's ``Plane``s (and ``Ground``s) among its contact generators: what the

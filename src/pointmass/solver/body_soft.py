@@ -669,6 +669,29 @@ def open_step(awake, vel, ang, left_v, left_w, half_v, half_w, fresh):
 
 
 @njit(cache=True, nogil=True)
+def open_and_kick(awake, vel, ang, left_v, left_w, half_v, half_w, force, torque, inv_mass,
+                  inv_inertia, inv_i, lin_d, ang_d, g, h):
+    """The leapfrog's opening and the first kick in one call (``World._open_leapfrog``):
+    ``open_step``, then a whole kick of ``h`` for the bodies that go on from their half-step
+    velocity and a half kick (followed by a drift of ``h``) for the fresh ones. Returns
+    (the first body whose spin is not finite, or -1; 1 if it was in the half kick)."""
+    n = vel.shape[0]
+    fresh = np.empty(n, np.bool_)
+    open_step(awake, vel, ang, left_v, left_w, half_v, half_w, fresh)
+    going = np.empty(n, np.bool_)
+    for i in range(n):
+        going[i] = awake[i] and not fresh[i]
+        fresh[i] = awake[i] and fresh[i]
+    bad = integrate_velocities(vel, ang, force, torque, inv_mass, inv_inertia, inv_i, lin_d,
+                               ang_d, g, h, going)
+    if bad >= 0:
+        return bad, 0
+    bad = integrate_velocities(vel, ang, force, torque, inv_mass, inv_inertia, inv_i, lin_d,
+                               ang_d, g, 0.5 * h, fresh, h)
+    return bad, 1
+
+
+@njit(cache=True, nogil=True)
 def leave_step(awake, vel, ang, left_v, left_w):
     """What the step left each awake body with (``open_step`` reads it); a sleeper's is
     marked none (inf): woken, by hand or by a touch, it starts afresh from rest."""
