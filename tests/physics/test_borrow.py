@@ -5,7 +5,7 @@ owner."""
 import numpy as np
 from numba import njit
 
-from pointmass.solver.borrow import borrowed, keep_alive
+from pointmass.solver.borrow import borrowed, keep_alive, zeroed
 
 
 @njit(cache=True)
@@ -17,11 +17,10 @@ def _add_one(view):
 
 @njit(cache=True)
 def _through_views(a, n):
-    """``a`` borrowed, and an array made here borrowed and kept alive to the end: each is
-    changed ``n`` times by a kernel call; returns the made one's sum."""
+    """``a`` borrowed, and an array made here (``zeroed``: owner and view) kept alive to the
+    end: each is changed ``n`` times by a kernel call; returns the made one's sum."""
     view = borrowed(a)
-    own = np.zeros((3, 2))
-    made = borrowed(own)
+    own, made = zeroed((3, 2), np.float64)
     for _ in range(n):
         _add_one(view)
         _add_one(made)

@@ -18,6 +18,7 @@ be returned to Python (it would point at memory nobody owns) nor stored beyond t
 
 from __future__ import annotations
 
+import numpy as np
 from numba import njit, types
 from numba.core import cgutils
 from numba.extending import intrinsic
@@ -44,3 +45,18 @@ def keep_alive(*owners):
     """Nothing: a use of ``owners`` that keeps them (and so their borrowed views) alive up to
     this point of the caller."""
     return len(owners)
+
+
+@njit(cache=True, inline="always")
+def scratch(shape, dtype):
+    """A new array of ``shape`` and ``dtype`` (uninitialised, as ``np.empty``) and a borrowed
+    view of it: (owner, view). Keep the owner alive while the view is used (``keep_alive``)."""
+    owner = np.empty(shape, dtype)
+    return owner, borrowed(owner)
+
+
+@njit(cache=True, inline="always")
+def zeroed(shape, dtype):
+    """``scratch`` filled with zeros (``np.zeros``)."""
+    owner = np.zeros(shape, dtype)
+    return owner, borrowed(owner)
