@@ -571,9 +571,10 @@ class World:
         h = dt / st.soft_substeps
         kept, acc = self._apply_body_forces(h)  # for the first substep (and found again)
         p = self.particles
-        if not b.awake.any() and not (p.count and p.awake.any()):
-            # everything asleep, and no force woke it: no body and no particle can move or
-            # touch anything this step, so there is no row to find and nothing to solve
+        if not (p.count and p.awake.any()) and not sleeping.any_active(b):
+            # everything asleep (but still scenery: a static body stays awake) and no force
+            # woke it: no body and no particle can move or touch anything this step, so there
+            # is no row to find and nothing to solve
             if kept is not None:
                 b.force[:], b.torque[:] = kept
             return self._stay_asleep()
@@ -627,9 +628,10 @@ class World:
         return rows
 
     def _stay_asleep(self) -> body_soft.SoftRows:
-        """The soft body stage of a substep in which every body and particle sleeps: what the
-        whole stage leaves then (no rows, no impulses kept, each sleeper's half-step and last
-        velocity its own (rest) and none left), without its passes over empty work."""
+        """The soft body stage of a substep in which every body and particle sleeps (but still
+        static bodies, which stay awake): what the whole stage leaves then (no rows, no
+        impulses kept, each body's half-step velocity its own, none left for a sleeper),
+        without its passes over empty work."""
         b = self.bodies
         if self.body_contacts.a.shape[0]:
             self.body_contacts.resize(0)

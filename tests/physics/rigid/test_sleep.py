@@ -447,10 +447,13 @@ def test_a_world_all_asleep_steps_without_changing_a_bit_and_wakes_as_before():
     """With every body asleep the soft stage only keeps its books (``World._stay_asleep``: no
     rows, nothing solved): 200 such steps leave every body's state, the kept impulses and the
     contacts bit for bit as the first left them; then a particle thrown at the pile and a
-    push by hand wake it, as with the whole stage (the particle's rows, the force)."""
+    push by hand wake it, as with the whole stage (the particle's rows, the force). A static
+    body (which never sleeps) in the world does not keep the stage working."""
     world = _world()
     boxes = _stack(world, 3) + _stack(world, 2, x=3.0)
-    _step_until_asleep(world)
+    wall = world.add_body(Box((0.1, 1.0, 1.0)), (-6.0, 1.0, 0.0), (0.99, 0.0, 0.14, 0.0),
+                          mass=math.inf)
+    _until_movable_asleep(world)
     world.step(DT)
     before = world.bodies.snapshot()
     held = world.sleeping_impulses.kept.keys.copy()
@@ -461,12 +464,21 @@ def test_a_world_all_asleep_steps_without_changing_a_bit_and_wakes_as_before():
         assert np.array_equal(before[name], after[name]), name
     assert np.array_equal(world.sleeping_impulses.kept.keys, held)
     assert stats.body_contacts == 0 and stats.awake_bodies == 0 and stats.velocity_passes == 0
-    assert len(world.body_impulses) == 0
+    assert len(world.body_impulses) == 0 and wall.awake
     world.add_particle((-3.0, 0.5, 0.0), (10.0, 0.0, 0.0), radius=0.05, mass=0.5)
     for _ in range(30):
         world.step(DT)
     assert all(b.awake for b in boxes[:3]) and not any(b.awake for b in boxes[3:])
-    _step_until_asleep(world)
+    _until_movable_asleep(world)
     boxes[4].add_force((0.0, 0.0, 50.0))
     world.step(DT)
     assert boxes[3].awake and boxes[4].awake and boxes[4].velocity[2] > 0.0
+
+
+def _until_movable_asleep(world, seconds=5.0):
+    """Step until every body of finite mass sleeps (a static one never does)."""
+    for _ in range(int(seconds / DT)):
+        world.step(DT)
+        if world.bodies.awake_movable() == 0:
+            return
+    raise AssertionError(f"still awake after {seconds} s")
