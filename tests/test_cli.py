@@ -174,3 +174,32 @@ def test_render_of_a_demo_that_fails_while_stepping_is_one_line(tmp_path, capsys
     assert len(err.strip().splitlines()) == 1 and "Traceback" not in err
     assert "rendering stopped by UnstableStepError at t = 0.5" in err
     assert "no picture was written" in err and not out.exists()
+
+
+@pytest.mark.parametrize("signum, status", [("SIGINT", 130), ("SIGTERM", 143)])
+def test_an_error_after_a_signal_exits_as_the_signal(capsys, signum, status):
+    """A Ctrl-C that lands in a C callback (llvmlite's, while numba compiles a kernel) is
+    printed and dropped there, and numba then fails on the compile it cut short: the command
+    exits with the signal's status, not as a crash (CI saw exit 1 for a window's Ctrl-C)."""
+    import argparse
+    import signal
+
+    from pointmass import cli
+
+    def compile_cut_short(args):
+        cli._received.append(getattr(signal, signum))  # what the handler notes first
+        raise RuntimeError("no compiled object yet for <Library 'kernel'>")
+
+    cli._handle_termination()
+    try:
+        args = argparse.Namespace(command="list", func=compile_cut_short)
+        assert cli._dispatch(args) == status
+        assert "interrupted (RuntimeError after the signal" in capsys.readouterr().err
+        cli._received.clear()
+        def fails(args):
+            raise RuntimeError("a fault of its own")
+
+        with pytest.raises(RuntimeError):  # with no signal, an error is an error
+            cli._dispatch(argparse.Namespace(command="list", func=fails))
+    finally:
+        cli._received.clear()

@@ -266,14 +266,37 @@ class Terminated(KeyboardInterrupt):
     its file before the process ends."""
 
 
+#: The signals this command has received (``_on_signal``, ``_on_interrupt``).
+_received: list[int] = []
+
+
 def _on_signal(signum, frame) -> None:
+    _received.append(signum)
     raise Terminated(signal.Signals(signum).name)
 
 
+def _on_interrupt(signum, frame) -> None:
+    """Ctrl-C, as Python's own handler (KeyboardInterrupt), noted first."""
+    _received.append(signum)
+    raise KeyboardInterrupt
+
+
 def _handle_termination() -> None:
+    _received.clear()
     for name in ("SIGTERM", "SIGHUP"):
         if hasattr(signal, name):
             signal.signal(getattr(signal, name), _on_signal)
+    if signal.getsignal(signal.SIGINT) is signal.default_int_handler:
+        signal.signal(signal.SIGINT, _on_interrupt)
+
+
+def _interrupted_status() -> int | None:
+    """The exit status of the signal this command received (130 Ctrl-C, 143 the others), if
+    any. An interrupt that lands in a C callback (llvmlite's, while numba compiles) is printed
+    and dropped there, and what fails next is its consequence, not a fault of its own."""
+    if not _received:
+        return None
+    return 130 if _received[-1] == signal.SIGINT else 143
 
 
 def _checked_output(path: str, check) -> Path:
@@ -325,6 +348,11 @@ def _dispatch(args) -> int:
         print("pointmass: interrupted", file=sys.stderr)
         return 130
     except Exception as exc:
+        status = _interrupted_status()
+        if status is not None:  # a signal cut a compile short (``_interrupted_status``)
+            print(f"pointmass: interrupted ({type(exc).__name__} after the signal: {exc})",
+                  file=sys.stderr)
+            return status
         # Matched by name so this module never imports the renderer or the window itself.
         names = {c.__name__ for c in type(exc).__mro__}
         if "NoDisplayError" in names:
