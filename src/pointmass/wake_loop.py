@@ -97,12 +97,13 @@ def wake_particles(world: World, marked: np.ndarray) -> np.ndarray:
 
 
 def find_body_rows(world: World, h: float, dt: float, acc: np.ndarray, planes: list,
-                   opening: float | None = None):
+                   opening: float | None = None, table: np.ndarray | None = None):
     """This substep's body rows, then the particle–body rows; returns the packed view (or
     None) and ``acc`` extended to it. A sleeping island that a row wakes gets its first
     kick (of ``opening``, the soft step's leapfrog half kick; of h when None: the substep)
     and the rows are made again, until no row touches a sleeping body that
-    should wake. ``planes``: the world's ``Plane``s (``World._planes``, found once a step)."""
+    should wake. ``planes``: the world's ``Plane``s (``World._planes``, found once a step);
+    ``table``: their ``collide.plane_table`` when the caller has it."""
     b = world.bodies
     p = world.particles
     first = h if opening is None else opening
@@ -117,7 +118,7 @@ def find_body_rows(world: World, h: float, dt: float, acc: np.ndarray, planes: l
             world.body_contacts.resize(0)
         else:
             generate_body_contacts(b, planes, dt, world.body_contacts, active=live,
-                                   exclude=exclude)
+                                   exclude=exclude, table=table)
         packed = add_particle_contacts(b, p, dt, world.body_contacts, world._particle_friction,
                                        world._particle_restitution)
         full = acc if packed is None else np.concatenate(

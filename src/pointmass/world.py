@@ -19,6 +19,7 @@ from .particle_sleep import active as moving_particles
 from .particles import Particles
 from .rigid import sleep as sleeping
 from .rigid.bodies import Bodies, Body
+from .rigid.collide import plane_table
 from .rigid.contacts import BodyContacts
 from .rigid.forces import BodyForceGenerator
 from .rigid.joint_set import Joints
@@ -211,7 +212,7 @@ class World:
 
     def _wake_all(self) -> None:
         b = self.bodies
-        if b.count and not b.awake.all():
+        if b.count and not b.all_awake():
             b.wake_islands(np.unique(b.island[~b.awake]))
         p = self.particles
         if p.count and not p.awake.all():
@@ -372,7 +373,8 @@ class World:
                 isinstance(dt, (int, float, np.integer, np.floating)) and math.isfinite(dt)
                 and dt > 0):
             raise ValueError(f"dt must be a finite number of seconds > 0, got {dt!r}")
-        self._check_references()
+        if self.particles.count < self._checked_count:  # particles gone since (a restore)
+            self._check_references()
         h = float(dt) / self._substeps
         # Blow-ups are caught before anything moves (stability.py: springs check their
         # stiffness against the step, user forces the velocity change they would cause), so
@@ -571,7 +573,7 @@ class World:
         h = dt / st.soft_substeps
         kept, acc = self._apply_body_forces(h)  # for the first substep (and found again)
         p = self.particles
-        if not (p.count and p.awake.any()) and not sleeping.any_active(b):
+        if self._sleep and not (p.count and p.awake.any()) and not sleeping.any_active(b):
             # everything asleep (but still scenery: a static body stays awake) and no force
             # woke it: no body and no particle can move or touch anything this step, so there
             # is no row to find and nothing to solve
@@ -581,13 +583,15 @@ class World:
         x_start, q_start = b.position.copy(), b.orientation.copy()  # the sweep's start
         # the particles the integration moved (and kicked by dt); none: no packed view
         integrated = p.awake.copy() if p.count else None
-        planes = self._planes()  # found once a step
+        planes = self._planes()  # found once a step, and their table (collision, sweep)
+        table = plane_table(planes)
         try:  # the first kicks (here, and of woken bodies); ``body_soft`` gives the others
             # the leapfrog (``body_soft``): a body goes on from the half-step velocity its
             # last step drifted with, kicked by h; one whose velocity that step did not leave
             # (just added, set by hand, woken) starts from it with a half kick
             self._open_leapfrog(h)
-            packed, acc = wake.find_body_rows(self, h, dt, acc, planes, opening=h / 2)
+            packed, acc = wake.find_body_rows(self, h, dt, acc, planes, opening=h / 2,
+                                              table=table)
             self._packed = packed  # the islands read its particles (``_fall_asleep``)
             view = b
             if packed is not None:
@@ -618,7 +622,7 @@ class World:
             # ones); the step's synchronised ones wait in ``left_velocity`` meanwhile
             body_soft.before_sweep(b.velocity, b.angular_velocity, b.half_velocity,
                                    b.half_spin, b.left_velocity, b.left_spin)
-            sweep_back(b, planes, exclude, x_start, q_start, dt, anchored, st)
+            sweep_back(b, planes, exclude, x_start, q_start, dt, anchored, st, table)
             body_soft.after_sweep(b.awake, b.velocity, b.angular_velocity, b.half_velocity,
                                   b.half_spin, b.left_velocity, b.left_spin)
         else:

@@ -319,13 +319,14 @@ def plane_table(planes) -> np.ndarray:
 
 def generate(bodies, planes, dt: float, contacts: BodyContacts,
              margin: float = SPECULATIVE_MARGIN, active: np.ndarray | None = None,
-             exclude: np.ndarray | None = None) -> None:
+             exclude: np.ndarray | None = None, table: np.ndarray | None = None) -> None:
     """Fill ``contacts`` with every body–body and body–plane point of ``bodies`` (a
     ``Bodies``) for a step of ``dt`` [s]; ``planes`` is a sequence of ``pointmass.Plane``
     (its normal, offset, friction, restitution; the particle selection does not apply).
     With ``active`` (N,) bool (sleeping, ``islands.py``), only pairs with an active body and
     active bodies on planes are narrow-phased: sleeping and static bodies are left alone.
-    ``exclude``: sorted keys lo·N + hi of body pairs that never collide (jointed bodies)."""
+    ``exclude``: sorted keys lo·N + hi of body pairs that never collide (jointed bodies).
+    ``table``: ``plane_table(planes)``, when the caller made it already (once a step)."""
     b = bodies
     if b.count > BODY_KEY_LIMIT:
         raise ValueError(f"at most {BODY_KEY_LIMIT} bodies collide (contact keys have 20 bits "
@@ -334,7 +335,8 @@ def generate(bodies, planes, dt: float, contacts: BodyContacts,
         active = _ALL_ACTIVE
     if exclude is None:
         exclude = _NONE_EXCLUDED
-    table = plane_table(planes)
+    if table is None:
+        table = plane_table(planes)
     rows = 0
     while True:
         room = contacts.room(rows)

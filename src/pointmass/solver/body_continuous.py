@@ -114,6 +114,7 @@ import math
 import numpy as np
 from numba import njit
 
+from ..rigid.collide import plane_table
 from ..rigid.islands import find_root
 from ..rigid.scalar import qmul, qrot, qrot_inv
 from ..rigid.shapes import BOX, SPHERE
@@ -711,19 +712,19 @@ def clamp(pos, quat, vel, ang, inv_mass, inv_inertia, inv_i, shape, size, awake,
 
 
 def sweep_back(bodies, planes, exclude, x_start: np.ndarray, q_start: np.ndarray,
-               dt: float, anchored=None, settings: SolverSettings | None = None) -> int:
+               dt: float, anchored=None, settings: SolverSettings | None = None,
+               table: np.ndarray | None = None) -> int:
     """``clamp`` on a ``Bodies`` and the world's ``Plane``s (``exclude``: the jointed pairs'
     keys, ``anchored``: the bodies jointed to a world point; None for none) with the slop and
     safety factor of ``settings`` (``World.settings``; the defaults when None); returns the
-    bodies moved."""
+    bodies moved. ``table``: the planes' ``collide.plane_table`` (made here when None: the
+    world makes it once a step for the collision and this)."""
     st = _DEFAULTS if settings is None else settings
     b = bodies
-    n = len(planes)
-    plane_n = np.empty((n, 3))
-    plane_d = np.empty(n)
-    for i, p in enumerate(planes):  # (np.array of lists of arrays was 2x slower, every step)
-        plane_n[i] = p.normal
-        plane_d[i] = p.offset
+    if table is None:
+        table = plane_table(planes)
+    plane_n = np.ascontiguousarray(table[:, :3])
+    plane_d = np.ascontiguousarray(table[:, 3])
     if exclude is None:
         exclude = np.zeros(0, np.int64)
     anchored = np.zeros(0, np.int64) if anchored is None else np.asarray(anchored, np.int64)
