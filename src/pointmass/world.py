@@ -373,8 +373,7 @@ class World:
                 isinstance(dt, (int, float, np.integer, np.floating)) and math.isfinite(dt)
                 and dt > 0):
             raise ValueError(f"dt must be a finite number of seconds > 0, got {dt!r}")
-        if self.particles.count < self._checked_count:  # particles gone since (a restore)
-            self._check_references()
+        self._check_references()
         h = float(dt) / self._substeps
         # Blow-ups are caught before anything moves (stability.py: springs check their
         # stiffness against the step, user forces the velocity change they would cause), so
