@@ -11,12 +11,11 @@ compilation excluded. Scenes: 100 000 free particles under gravity and drag; a 1
 impulses with 10 velocity and 4 position passes; the mean speed and the overlaps after the run
 show what each buys). Then the tiny worlds' steps/s, a step's fixed cost (issue 26, point 10:
 one sphere resting on the ground ≥ 30 000 steps/s): one particle, a particle on the ground, a
-sphere body on the ground with each body stage, sleep on and off, and bench_rigid's 10-box
-tower with the soft step and sleep off (``--only-tiny``: these rows alone). The tiny rows are
-CPU time (``time.process_time``) and the best of the repeats: a step of ~0.1 ms is what a
-shared machine's other processes stretch most, and the fastest repeat is the one they
-disturbed least (on 2 cores shared five ways, wall-clock medians of the same build moved by
-±40 % from run to run; the best CPU repeat by a few %).
+sphere body on the ground, sleep on and off, and bench_rigid's 10-box tower with sleep off
+(``--only-tiny``: these rows alone). The tiny rows are CPU time (``time.process_time``) and the
+best of the repeats: a step of ~0.1 ms is what a shared machine's other processes stretch most,
+and the fastest repeat is the one they disturbed least (on 2 cores shared five ways, wall-clock
+medians of the same build moved by ±40 % from run to run; the best CPU repeat by a few %).
 """
 
 from __future__ import annotations
@@ -169,17 +168,17 @@ def tiny_worlds() -> dict:
         world.add_particle((0, 0.1, 0), radius=0.1)
         return world
 
-    def resting_sphere(sleep, body_step="impulses"):
+    def resting_sphere(sleep):
         def build():
-            world = pm.World(sleep=sleep, body_step=body_step)
+            world = pm.World(sleep=sleep)
             world.add(pm.Ground())
             world.add_body(Sphere(0.5), (0, 0.5, 0), mass=1.0)
             return world
         return build
 
-    def tower(sleep, body_step="soft"):
+    def tower(sleep):
         def build():  # bench_rigid's tower: 10 unit cubes (1 kg, μ 0.5) on the ground
-            world = pm.World(sleep=sleep, body_step=body_step)
+            world = pm.World(sleep=sleep)
             world.add(pm.Ground(friction=0.5))
             for i in range(10):
                 world.add_body(pm.Box((0.5, 0.5, 0.5)), (0, 0.5 + i, 0), mass=1.0,
@@ -189,11 +188,9 @@ def tiny_worlds() -> dict:
 
     return {"1-particle world": particle,
             "1 particle (r 0.1) on the ground": resting_particle,
-            "1 sphere body on the ground, impulses step": resting_sphere(True),
-            "1 sphere body on the ground, impulses step, sleep off": resting_sphere(False),
-            "1 sphere body on the ground, soft step": resting_sphere(True, "soft"),
-            "1 sphere body on the ground, soft step, sleep off": resting_sphere(False, "soft"),
-            "10-box tower, soft step, sleep off": tower(False)}
+            "1 sphere body on the ground": resting_sphere(True),
+            "1 sphere body on the ground, sleep off": resting_sphere(False),
+            "10-box tower, sleep off": tower(False)}
 
 
 def bench_tiny(steps: int, repeats: int, build=None) -> float:

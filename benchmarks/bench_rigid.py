@@ -28,13 +28,10 @@ highest box, pyramid: the apex), the max and mean linear speed, the deepest box�
 beyond the floor or a wall, and the escapes (centre below the floor or outside the walls).
 "At rest" for the pit is max speed ≤ 0.1 m/s and box overlap ≤ 1 cm.
 
-Engine settings: pointmass, ``World()``'s defaults, each row naming its body stage
-(``body_step``): "pointmass impulses" the earlier stage, "pointmass soft" issue 26's soft step;
-islands sleep, and ", sleep off" is ``World(sleep=False)``, the baseline for what sleeping buys,
-with the awake count and the time everything was asleep printed under the table. The aliases
-``pointmass`` and ``pointmass-nosleep`` run the stage ``World()`` defaults to, e.g.
-``--engines pointmass-nosleep pointmass-impulses-nosleep mujoco`` for issue 26's point 10;
-PyBullet, DIRECT mode,
+Engine settings: pointmass, ``World()``'s defaults (its soft step; islands sleep), and
+", sleep off" is ``World(sleep=False)``, the baseline for what sleeping buys, with the awake
+count and the time everything was asleep printed under the table (``--engines
+pointmass-nosleep mujoco`` for issue 26's point 10); PyBullet, DIRECT mode,
 defaults (50 solver iterations, no substeps), maximal coordinates, damping zeroed (the others
 have none), friction √0.5 per shape (Bullet multiplies the two), restitution 0; MuJoCo 4,
 free-joint boxes, condim 3, friction 0.5 on every geom (MuJoCo takes the larger), pyramidal
@@ -45,7 +42,6 @@ CG; z up in MuJoCo, converted back here.
 from __future__ import annotations
 
 import argparse
-import inspect
 import math
 import statistics
 import sys
@@ -122,13 +118,8 @@ def _stepper(step, steps: int, budget: float) -> tuple[float, int]:
     return time.perf_counter() - start, done
 
 
-#: The body stage ``World()`` uses when none is named (its ``body_step`` default).
-DEFAULT_STAGE = inspect.signature(pm.World).parameters["body_step"].default
-
-
-def build_pointmass(scene: Scene, sleep: bool = True,
-                    body_step: str = DEFAULT_STAGE) -> pm.World:
-    world = pm.World(gravity=(0.0, -G, 0.0), sleep=sleep, body_step=body_step)
+def build_pointmass(scene: Scene, sleep: bool = True) -> pm.World:
+    world = pm.World(gravity=(0.0, -G, 0.0), sleep=sleep)
     world.add(pm.Ground(restitution=0.0, friction=MU))
     if scene.pit is not None:
         for normal in ((1, 0, 0), (-1, 0, 0), (0, 0, 1), (0, 0, -1)):
@@ -143,9 +134,8 @@ def build_pointmass(scene: Scene, sleep: bool = True,
 SLEEP_NOTES: list[tuple[str, str]] = []
 
 
-def run_pointmass(scene: Scene, steps: int, budget: float, sleep: bool = True,
-                  body_step: str = DEFAULT_STAGE):
-    world = build_pointmass(scene, sleep, body_step)
+def run_pointmass(scene: Scene, steps: int, budget: float, sleep: bool = True):
+    world = build_pointmass(scene, sleep)
     asleep_since = [None]  # the time the last body fell asleep, if all still sleep
 
     def step():
@@ -155,7 +145,7 @@ def run_pointmass(scene: Scene, steps: int, budget: float, sleep: bool = True,
     seconds, done = _stepper(step, steps, budget)
     b = world.bodies
     since = "never all" if asleep_since[0] is None else f"all from t = {asleep_since[0]:.2f} s"
-    SLEEP_NOTES.append((f"pointmass {body_step}{'' if sleep else ', sleep off'}",
+    SLEEP_NOTES.append((f"pointmass{'' if sleep else ', sleep off'}",
                         f"{int(b.awake.sum())}/{b.count} awake at the end; asleep: {since}"))
     return seconds, done, b.position.copy(), b.orientation.copy(), b.velocity.copy()
 
@@ -164,10 +154,9 @@ def warm_pointmass() -> None:
     """Compile every kernel the scenes use (box–box faces and edges, planes) outside timing."""
     scene = pit(16)
     scene.position = scene.position[:16]
-    for body_step in ("impulses", "soft"):
-        world = build_pointmass(scene, body_step=body_step)
-        for _ in range(90):
-            world.step(DT)
+    world = build_pointmass(scene)
+    for _ in range(90):
+        world.step(DT)
 
 
 def run_pybullet(scene: Scene, steps: int, budget: float):
@@ -245,24 +234,16 @@ def run_mujoco(scene: Scene, steps: int, budget: float, solver: str = "Newton"):
 
 
 ENGINES = {
-    f"pointmass {stage}{', sleep off' if not sleep else ''}":
-        lambda scene, steps, budget, stage=stage, sleep=sleep: run_pointmass(
-            scene, steps, budget, sleep=sleep, body_step=stage)
-    for stage in ("impulses", "soft") for sleep in (True, False)}
-ENGINES.update({
+    "pointmass": run_pointmass,
+    "pointmass, sleep off": lambda scene, steps, budget: run_pointmass(scene, steps, budget,
+                                                                       sleep=False),
     "PyBullet (50 it)": run_pybullet,
     "MuJoCo Newton": run_mujoco,
     "MuJoCo CG": lambda scene, steps, budget: run_mujoco(scene, steps, budget, "CG"),
-})
-ALIASES = {"pointmass-impulses": "pointmass impulses",
-           "pointmass-impulses-nosleep": "pointmass impulses, sleep off",
-           "pointmass-soft": "pointmass soft",
-           "pointmass-soft-nosleep": "pointmass soft, sleep off",
+}
+ALIASES = {"pointmass": "pointmass", "pointmass-nosleep": "pointmass, sleep off",
            "pybullet": "PyBullet (50 it)",
            "mujoco": "MuJoCo Newton", "mujoco-cg": "MuJoCo CG"}
-#: World()'s own stage, whichever it is (not in the default engine list: it is one of the above).
-DEFAULT_ALIASES = {"pointmass": f"pointmass {DEFAULT_STAGE}",
-                   "pointmass-nosleep": f"pointmass {DEFAULT_STAGE}, sleep off"}
 
 
 # --- the same measurements for every engine ----------------------------------------------------
@@ -336,8 +317,8 @@ def row(name: str, steps: int, full: bool, rate: float, base: float | None, n: i
             f"{m['box pen']:.4f} / {m['floor pen']:.4f} | {m['escapes']} |")
 
 
-STAGES = ("_substep_bodies", "integrate_velocities", "generate", "solve_bodies",
-          "integrate_positions", "project_bodies", "kinetic_energy")
+STAGES = ("_substep_bodies", "generate", "contact_step", "soft_passes", "sweep_back",
+          "kinetic_energy")
 
 
 def profile_pointmass(scene: Scene, steps: int) -> None:
@@ -371,12 +352,9 @@ def main() -> None:
     parser.add_argument("--scenes", nargs="+", default=["tower", "pyramid", "pit"],
                         choices=["tower", "pyramid", "pit"])
     parser.add_argument("--engines", nargs="+", default=list(ALIASES),
-                        choices=list(ALIASES) + list(DEFAULT_ALIASES),
-                        help="pointmass-impulses, pointmass-impulses-nosleep (World(sleep="
-                        "False), the baseline of sleeping), pointmass-soft and "
-                        "pointmass-soft-nosleep (the same with World(body_step=\"soft\")), "
-                        "pointmass and pointmass-nosleep (World()'s own stage), pybullet, "
-                        "mujoco (Newton), mujoco-cg")
+                        choices=list(ALIASES),
+                        help="pointmass, pointmass-nosleep (World(sleep=False), the baseline "
+                        "of sleeping), pybullet, mujoco (Newton), mujoco-cg")
     parser.add_argument("--repeats", type=int, default=1)
     parser.add_argument("--budget", type=float, default=300.0,
                         help="wall-clock cap [s] on one run's timed stepping")
@@ -407,7 +385,7 @@ def main() -> None:
         base = None
         SLEEP_NOTES.clear()
         for alias in args.engines:
-            name = {**ALIASES, **DEFAULT_ALIASES}[alias]
+            name = ALIASES[alias]
             try:
                 runs = [ENGINES[name](scene, steps, args.budget) for _ in range(args.repeats)]
             except ImportError as exc:

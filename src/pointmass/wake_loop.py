@@ -97,16 +97,15 @@ def wake_particles(world: World, marked: np.ndarray) -> np.ndarray:
 
 
 def find_body_rows(world: World, h: float, dt: float, acc: np.ndarray, planes: list,
-                   opening: float | None = None, table: np.ndarray | None = None):
+                   opening: float, table: np.ndarray | None = None):
     """This substep's body rows, then the particle–body rows; returns the packed view (or
-    None) and ``acc`` extended to it. A sleeping island that a row wakes gets its first
-    kick (of ``opening``, the soft step's leapfrog half kick; of h when None: the substep)
-    and the rows are made again, until no row touches a sleeping body that
-    should wake. ``planes``: the world's ``Plane``s (``World._planes``, found once a step);
-    ``table``: their ``collide.plane_table`` when the caller has it."""
+    None) and ``acc`` extended to it. A sleeping island that a row wakes gets its first kick
+    (of ``opening``, the soft step's leapfrog half kick, for a drift of h) and the rows are
+    made again, until no row touches a sleeping body that should wake. ``planes``: the
+    world's ``Plane``s (``World._planes``, found once a step); ``table``: their
+    ``collide.plane_table`` when the caller has it."""
     b = world.bodies
     p = world.particles
-    first = h if opening is None else opening
     links = body_links(world) if world._sleep else None
     exclude = world.joints.pair_keys(b.count) if world.joints else None
     while True:
@@ -136,7 +135,7 @@ def find_body_rows(world: World, h: float, dt: float, acc: np.ndarray, planes: l
                 was = b.awake.copy()
                 wake_particles(world, out)
                 if (b.awake & ~was).any():  # their first kick
-                    world._kick(first, b.awake & ~was, h)
+                    world._kick(opening, b.awake & ~was, h)
                 continue  # again, with the woken
             slot = c.a >= b.count
             reach = np.zeros(c.a.shape[0], np.bool_)
@@ -150,7 +149,7 @@ def find_body_rows(world: World, h: float, dt: float, acc: np.ndarray, planes: l
         if not woken.any():
             sleeping.leave_sleepers_out(b, world.body_contacts, packed)
             return packed, full
-        world._kick(first, b.wake_islands(np.unique(b.island[woken])), h)
+        world._kick(opening, b.wake_islands(np.unique(b.island[woken])), h)
 
 
 def body_links(world: World) -> np.ndarray:

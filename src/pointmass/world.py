@@ -25,16 +25,23 @@ from .rigid.forces import BodyForceGenerator
 from .rigid.joint_set import Joints
 from .rigid.joints import Joint
 from .rigid.shapes import Box, Sphere
-from .rigid.step import force_acceleration, integrate_positions, integrate_velocities, spin_error
+from .rigid.step import force_acceleration, integrate_velocities, spin_error
 from .solver import ImpulseHistory, Solver, SolverSettings, SolveStats, body_soft
 from .solver.body_continuous import sweep_back
-from .solver.body_late import project_late
 from .stability import SpringCheck, jump_check, needs_jump_check
 from .step_stats import StepStats
 
 
 class World:
-    """Particles and everything acting on them.
+    """Particles, rigid bodies and everything acting on them.
+
+    The particles' contacts and links are solved by ``solver.Solver`` (the cookbook's
+    resolver, made converging); the rigid bodies', with the particles that touch them, by
+    Box2D v3's soft step (``solver/body_soft.py``: after one collision pass,
+    ``settings.soft_substeps`` substeps of soft contacts and joints (``solver/joint_soft.py``)
+    and relax, then restitution; it keeps linear and angular momentum exactly, stands towers
+    of 30 boxes and holds joints per substep), then its continuous collision
+    (``solver/body_continuous.py``).
 
     Args:
         gravity: World-wide gravitational acceleration [m/s²] applied to every movable particle.
@@ -53,13 +60,6 @@ class World:
             force pushes it or the user moves it (``rigid/islands.py``, ``rigid/sleep.py``,
             ``particle_sleep.py``). On by default; False gives everything a full step always
             (bit for bit the trajectory of an engine without sleep).
-        body_step: The rigid bodies' contact stage: "soft" (the default: Box2D v3's soft
-            step, ``solver/body_soft.py``: after one collision pass, ``soft_substeps`` (4)
-            substeps of soft contacts and joints (``solver/joint_soft.py``) and relax, then
-            restitution; it keeps linear and angular momentum exactly, stands towers of 30
-            boxes and holds joints per substep) or "impulses" (the earlier stage: sequential
-            impulses, exact normals for small sets, position projection; still selectable).
-
         settings: The solver's tuning numbers (``pm.SolverSettings``; its defaults when None):
             tolerances, caps on passes, when the exact solve and the threads are used, the
             soft step's substeps, contact and joint stiffness, push-out speed and slop.
@@ -74,7 +74,7 @@ class World:
 
     def __init__(self, gravity=(0.0, -9.81, 0.0), *, iterations: int | None = None,
                  resolver: str = "sequential", restitution_threshold: float = 0.0,
-                 substeps: int = 1, sleep: bool = True, body_step: str = "soft",
+                 substeps: int = 1, sleep: bool = True,
                  settings: SolverSettings | None = None) -> None:
         self.particles = Particles()
         #: Rigid bodies (``add_body``); they meet each other, every ``Plane``/``Ground`` and every
@@ -83,7 +83,6 @@ class World:
         self.body_contacts = BodyContacts()
         #: The warm start of rigid-body contact points (clear it with ``impulses``).
         self.body_impulses = ImpulseHistory()
-        self._late_contacts = BodyContacts()  # the overlaps after the drift (body_late)
         self._body_rows = None
         self._packed = None  # the last substep's particle–body view (or None)
         #: The longest still-time of an awake particle after the last step [s].
@@ -119,9 +118,6 @@ class World:
         self.resolver = resolver
         self.restitution_threshold = restitution_threshold
         self.substeps = substeps
-        if body_step not in ("impulses", "soft"):
-            raise ValueError(f'body_step must be "impulses" or "soft", got {body_step!r}')
-        self._body_step = body_step
         self.time = 0.0
         #: Probes sampled after every step (``add_probe``).
         self.probes: list = []
@@ -189,12 +185,6 @@ class World:
         if isinstance(value, bool) or not isinstance(value, int) or not 1 <= value <= 1000:
             raise ValueError(f"substeps must be an int in [1, 1000], got {value!r}")
         self._substeps = value
-
-    @property
-    def body_step(self) -> str:
-        """The rigid bodies' contact stage this world was made with: "impulses" or "soft"
-        (read-only: a stage keeps state, warm starts and rows, the other cannot take over)."""
-        return self._body_step
 
     @property
     def sleep(self) -> bool:
@@ -507,57 +497,6 @@ class World:
         return self.solver.solve(p, self.contacts, self.impulses, dt)
 
     def _substep_bodies(self, dt: float):
-        """The body stage of one substep: ``body_step`` picks the method."""
-        if self._body_step == "soft":
-            return self._substep_bodies_soft(dt)
-        return self._substep_bodies_impulses(dt)
-
-    def _substep_bodies_impulses(self, dt: float):
-        """The rigid bodies' substep: kick (gravity, forces, torques), contacts, the solver's
-        body stage on velocities, drift (x += v·dt, the free rotation), then its position
-        half. Particles with a radius that touch a body join the stage as bodies without
-        inertia (``rigid/particle_body.py``); with none touching, the stage sees the bodies
-        alone, as in a world without particles. Sleeping bodies are skipped throughout
-        (``rigid/sleep.py``)."""
-        b = self.bodies
-        kept, acc = self._apply_body_forces(dt)
-        p = self.particles
-        planes = self._planes()
-        try:  # the kick, and that of bodies woken while finding contacts, read the forces
-            self._kick(dt, b.awake)
-            packed, acc = wake.find_body_rows(self, dt, dt, acc, planes)
-            self._packed = packed  # the islands read its particles (``_fall_asleep``)
-        finally:
-            if kept is not None:
-                b.force[:], b.torque[:] = kept
-        if packed is None:
-            rows = self.solver.solve_bodies(b, self.body_contacts, acc, self.body_impulses, dt,
-                                            self.joints)
-        else:  # ``acc`` came back extended to the packed particles
-            rows = self.solver.solve_bodies(packed, self.body_contacts, acc,
-                                            self.body_impulses, dt, self.joints)
-            packed.take_velocities(b, p, dt)
-        bad = integrate_positions(b.position, b.orientation, b.velocity, b.angular_velocity,
-                                  b.inv_inertia, b.inv_inertia_world, dt, b.awake)
-        if bad >= 0:
-            raise FloatingPointError(
-                f"body {bad} became non-finite at t = {self.time:.6g} s (position "
-                f"{b.position[bad].tolist()}, velocity {b.velocity[bad].tolist()})")
-        if packed is None:
-            self.solver.project_bodies(b, rows, self.body_impulses, self.joints)
-        else:
-            packed.give_positions(b, p)
-            self.solver.project_bodies(packed, rows, self.body_impulses, self.joints)
-            packed.take_positions(b, p)
-        # what the rows did not foresee (an impulse sent a body where no row looked)
-        exclude = self.joints.pair_keys(b.count) if self.joints else None
-        live = b.awake if self._sleep and not b.awake.all() else None
-        rows.position_passes += project_late(b, planes, exclude, self._late_contacts, dt,
-                                            self.body_contacts.key, live)
-        self._body_rows = rows
-        return rows
-
-    def _substep_bodies_soft(self, dt: float):
         """The rigid bodies' substep: the first kick (gravity, forces, torques over
         dt / ``settings.soft_substeps``), contacts once, then the soft step's substeps
         (``solver/body_soft.py``: kick, warm start, soft solve, drift, relax; restitution),

@@ -118,18 +118,13 @@ def _watched_steps(world: pm.World, steps: int) -> list[float]:
     return speeds
 
 
-#: Both body stages: ``World()``'s and the soft step (issue 26, ``solver/body_soft.py``).
-STAGES = ["impulses", "soft"]
-
-
-@pytest.mark.parametrize("body_step", STAGES)
-def test_a_body_held_by_two_joints_and_hit_hard_keeps_stepping(body_step):
+def test_a_body_held_by_two_joints_and_hit_hard_keeps_stepping():
     """Issue 30's hang: a 55 g box held by a ball joint and a hinge to two world points (its
     two joint points 16 cm apart, the anchors 105 cm apart and not on the hinge's axis: the
     joints cannot all hold), hit from below by a 2.3 kg box at 16 m/s. Before: the first step
     took 0.36 s and step 3 never returned (the joints spun the box up without bound, and the
     free rotation split its turn into h·|ω| pieces: 1e56 of them)."""
-    world = pm.World(body_step=body_step)
+    world = pm.World()
     box = world.add_body(Box((0.1, 0.05, 0.08)), (0.0, 1.0, 0.0), mass=0.055)
     world.add(BallJoint(box, (0.08, 0.0, 0.0), None, (0.5, 1.5, 0.5)))
     world.add(HingeJoint(box, (-0.08, 0.0, 0.0), None, (-0.2, 0.6, 0.4), axis=(0.6, 0.0, 0.8)))
@@ -141,26 +136,25 @@ def test_a_body_held_by_two_joints_and_hit_hard_keeps_stepping(body_step):
     assert np.isfinite(world.bodies.position).all()
 
 
-@pytest.mark.parametrize("body_step", STAGES)
-def test_a_force_free_jointed_scene_does_not_explode(body_step):
+def test_a_force_free_jointed_scene_does_not_explode():
     """Issue 30's silent explosion, as the generator makes it: seed 677 is force-free, six
     bodies (a 2.3 t, a 3.4 g, a 24 kg, a 3.7 kg and a 1.8 kg one, one static), three joints
     to world points (a hinge and a ball joint on one body, a ball joint on another), four
     particles, a ground; 1.55e5 J. Before: 6.7e7 m/s at step 5, finite, no error. Now no step
-    gains energy (issue 30's 1e-9) with ``World()`` (``solver/body_energy.py``) nor with the
-    soft step (``solver/soft_energy.py``'s ``limit_islands``; before it, +2.1e-5 at step 2;
-    measured now: at most +5.8e-16, rounding)."""
+    gains energy (issue 30's 1e-9) with ``World()``'s soft step (``solver/soft_energy.py``'s
+    ``limit_islands``; before it, +2.1e-5 at step 2; measured now: at most +5.8e-16,
+    rounding)."""
     world, force_free = fuzz.build(677)
     assert force_free and world.bodies.count == 6 and len(world.joints) == 3  # that scene
     assert world.kinetic_energy() == pytest.approx(1.5486e5, rel=1e-4)
-    o = fuzz.run(677, 120, watchdog=WATCHDOG, body_step=body_step)
+    o = fuzz.run(677, 120, watchdog=WATCHDOG)
     assert o.refused is None and o.explosion is None
     assert o.gain is None
     assert o.speed < 100.0
 
 
 # -- the soft step's jointed scenes (issue 26's blocker 1) ---------------------------------------
-#: Jointed scenes that exploded with ``World(body_step="soft")`` (> 1e4 m/s, no error; seeds
+#: Jointed scenes that exploded with the soft step (``World()``'s, > 1e4 m/s, no error; seeds
 #: 0–199, 300 steps), with the step they exploded in: most hold a light body by two joints to
 #: one other body (a ball and a hinge, two hinges on different axes: over-constrained) at arms
 #: of 4–9 m (the generator's joint point on B is where A's is), with mass ratios to 1e5.
@@ -178,7 +172,7 @@ def test_soft_step_jointed_scenes_that_exploded_hold(seed):
     """Every step returns, no speed passes 1e4 m/s and no step leaves a state that is not
     finite, through all 300 steps (measured: fastest 4.8e3 and 4.2e3 m/s, seeds 33 and 53:
     a 1.4 g and a 2 g box on over-constrained pairs; the others ≤ 540 m/s)."""
-    o = fuzz.run(seed, fuzz.STEPS, watchdog=WATCHDOG, body_step="soft")
+    o = fuzz.run(seed, fuzz.STEPS, watchdog=WATCHDOG)
     assert o.refused is None, o.refused
     assert o.explosion is None, f"seed {seed}: {o.speed:.3g} m/s at step {o.explosion}"
     assert o.steps == fuzz.STEPS
@@ -188,7 +182,7 @@ def test_soft_step_refuses_a_velocity_it_cannot_square_in_the_step():
     """A body whose velocity the step leaves too large to square (its energy is not a finite
     number) is refused by that step, naming it: before, a jointed scene (seed 196) left
     1e158 rad/s after its first step and only the next step's kick caught it."""
-    world = pm.World(body_step="soft", gravity=(0.0, 0.0, 0.0))
+    world = pm.World(gravity=(0.0, 0.0, 0.0))
     fast = world.add_body(Sphere(0.1), (0.0, 0.0, 0.0))
     held = world.add_body(Sphere(0.1), (3.0, 0.0, 0.0))
     world.add(BallJoint(held, (0.0, 0.0, 0.0), None, (3.0, 0.0, 0.0)))  # the jointed loop
@@ -234,7 +228,7 @@ def test_soft_step_jointed_fuzz_counts():
         world, _ = fuzz.build(seed)
         if not len(world.joints):
             continue
-        outcomes.append(fuzz.run(seed, fuzz.STEPS, watchdog=WATCHDOG, body_step="soft"))
+        outcomes.append(fuzz.run(seed, fuzz.STEPS, watchdog=WATCHDOG))
     assert len(outcomes) == 143
     exploded = [o.seed for o in outcomes if o.explosion is not None]
     assert not exploded, exploded

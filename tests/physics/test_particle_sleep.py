@@ -14,8 +14,6 @@ from pointmass.rigid.shapes import Box
 
 DT = 1.0 / 60.0
 R = 0.1
-#: Both body stages (``World(body_step=...)``), for the scenes with bodies.
-STAGES = ("impulses", "soft")
 
 
 def _until_asleep(world, seconds=3.0):
@@ -170,9 +168,8 @@ def test_particles_linked_by_a_rod_share_an_island_and_a_link_to_a_mover_wakes()
     assert world.particles.awake[a]
 
 
-@pytest.mark.parametrize("stage", STAGES)
-def test_a_particle_on_a_box_sleeps_with_it_and_wakes_when_the_box_is_pushed(stage):
-    world = _ground_world(body_step=stage)
+def test_a_particle_on_a_box_sleeps_with_it_and_wakes_when_the_box_is_pushed():
+    world = _ground_world()
     box = world.add_body(Box((0.5, 0.5, 0.5)), (0.0, 0.5, 0.0), mass=1.0)
     i = world.add_particle((0.0, 1.0 + R, 0.0), radius=R)
     _until_asleep(world)
@@ -188,9 +185,8 @@ def test_a_particle_on_a_box_sleeps_with_it_and_wakes_when_the_box_is_pushed(sta
     assert world.particles.position[i, 1] > on[1]
 
 
-@pytest.mark.parametrize("stage", STAGES)
-def test_a_particle_coming_to_rest_on_a_sleeping_box_sleeps_and_the_box_wakes_it(stage):
-    world = _ground_world(body_step=stage)
+def test_a_particle_coming_to_rest_on_a_sleeping_box_sleeps_and_the_box_wakes_it():
+    world = _ground_world()
     box = world.add_body(Box((0.5, 0.5, 0.5)), (0.0, 0.5, 0.0), mass=1.0)
     for _ in range(60):
         world.step(DT)

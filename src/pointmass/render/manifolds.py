@@ -17,7 +17,6 @@ from __future__ import annotations
 import numpy as np
 
 from ..rigid.shapes import BOX
-from ..solver.body_stages import SLOP
 from . import style
 from .gather import LINE_FLOATS, line_rows
 
@@ -32,7 +31,9 @@ NORMAL_WIDTH = 2.0
 OUTLINE_WIDTH = 1.5
 #: The outline is fainter than the points it joins.
 OUTLINE_ALPHA = 0.6
-#: Alpha of touching and of speculative points.
+#: Alpha of touching and of speculative points; a point counts as touching when its gap is
+#: under TOUCHING_DEPTH [m] (0.1 mm: float noise on a resting face).
+TOUCHING_DEPTH = 1e-4
 TOUCHING_ALPHA = 1.0
 SPECULATIVE_ALPHA = 0.3
 
@@ -72,7 +73,7 @@ def manifold_lines(world, width_scale: float) -> list[np.ndarray]:
     points, normals, depth, manifold, scale = contact_points(world)
     if not len(points):
         return []
-    alpha = np.where(depth > -SLOP, TOUCHING_ALPHA, SPECULATIVE_ALPHA)
+    alpha = np.where(depth > -TOUCHING_DEPTH, TOUCHING_ALPHA, SPECULATIVE_ALPHA)
     rgb = style.CONTACT_COLOR
     length = np.minimum(NORMAL_LENGTH, NORMAL_FRACTION * scale)[:, None]
     return [outline_rows(points, normals, manifold, alpha, width_scale),

@@ -104,8 +104,8 @@ def pair_contacts(pos, quat, vel, turn, shape, size, inv_mass, friction, restitu
     A pair that stays apart all step gets no row.
 
     What the solver must do with a row of depth d < 0 (a gap): let its bodies close along its
-    normal by at most −d within the step (``body_stages.prepare``'s target gap/dt; Box2D v3's
-    soft step the same with s·inv_h), and follow the point from the body-fixed anchors
+    normal by at most −d within the step (the soft step's speculative row, ``body_soft``, as
+    Box2D v3's with s·inv_h), and follow the point from the body-fixed anchors
     r_a, r_b, which coincide at the step's start."""
     normal = np.zeros(3)
     points = np.zeros((MAX_POINTS, 3))

@@ -1,7 +1,7 @@
 """The rows of a joint's angular constraints in the current pose: per slot a world axis, the
 position value C and the row type (an equality, a one-sided limit, or off). What a hinge's two
 locks and a cone's swing and twist limits mean geometrically; the solver (``pointmass.solver``:
-``joint_stages``, ``joint_project``, ``joint_soft``) builds its velocity and position rows from
+``joint_stages``, ``joint_soft``) builds its velocity rows and soft position bias from
 them, and ``JointSet.angular_errors`` reports how far each joint is off them. Here, in
 ``rigid``, so that ``rigid`` never imports ``solver`` (the solver imports the bodies' and
 joints' definitions, one direction only)."""

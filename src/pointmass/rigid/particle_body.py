@@ -1,7 +1,7 @@
 """Particles against rigid bodies: a particle with a radius is a sphere body with no inertia.
 
 Every particle with radius > 0 meets every body with a shape, automatically, once the world
-has bodies. The contacts are rows of the body stage (``solver/body_stages.py``): the solver
+has bodies. The contacts are rows of the body stage (``solver/body_soft.py``): the solver
 works on a packed view — the bodies first, at their own indices (so body–body rows, keys and
 arithmetic are exactly those of a world without particles), then the touching particles as
 extra bodies with their inverse mass, zero inverse inertia and the identity orientation. The
@@ -144,32 +144,8 @@ class Packed:
         self.inv_mass[: frozen.shape[0]][frozen] = 0.0
         self.inv_inertia_world[: frozen.shape[0]][frozen] = 0.0
 
-    def take_velocities(self, bodies, particles, dt: float) -> None:
-        """After the velocity rows: the bodies' v, ω back; each particle drifts again with its
-        new velocity (x += (v_new − v)·dt)."""
-        n = bodies.count
-        bodies.velocity[:] = self.velocity[:n]
-        bodies.angular_velocity[:] = self.angular_velocity[:n]
-        s = self.selected
-        new = self.velocity[n:]
-        particles.position[s] += (new - particles.velocity[s]) * dt
-        particles.velocity[s] = new
-
-    def give_positions(self, bodies, particles) -> None:
-        """Before the position rows: where the bodies and the particles are now, and how the
-        bodies spin."""
-        n = bodies.count
-        self.position[:n] = bodies.position
-        self.position[n:] = particles.position[self.selected]
-        self.orientation[:n] = bodies.orientation
-        self.angular_velocity[:n] = bodies.angular_velocity  # the drift turned it
-        self.inv_inertia_world[:n] = bodies.inv_inertia_world
-        if self.frozen is not None:
-            self.inv_inertia_world[:n][self.frozen] = 0.0
-
     def take_positions(self, bodies, particles) -> None:
-        """After the position rows: positions (and the bodies' turns, with the spin they
-        carried along: ``body_energy.keep_spin``) back."""
+        """After the soft step: positions, the bodies' turns and spins back."""
         n = bodies.count
         bodies.position[:] = self.position[:n]
         bodies.orientation[:] = self.orientation[:n]

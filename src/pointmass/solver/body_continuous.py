@@ -65,7 +65,7 @@ What (after the substeps and the restitution):
    pair's time of impact.
 
 Momentum and energy: the stage moves poses only; a body turned back keeps its spin in its
-own frame (as the default stage's projection, ``body_energy.keep_spin``), so its kinetic
+own frame, so its kinetic
 energy, linear momentum and |I·ω| are those the solve gave. The angular momentum about a
 fixed origin changes by Δx × p of a moved body (nothing when its end velocity is along its
 step's displacement, as in free flight) and by its spin's turn back. Against static bodies and

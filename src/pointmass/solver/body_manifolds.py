@@ -26,7 +26,30 @@ import math
 
 from numba import njit
 
-from .body_stages import _arm_mass, _basis
+
+@njit(cache=True, inline="always")
+def arm_mass(inv_i, i, rx, ry, rz, dx, dy, dz):
+    """(r×d)·I⁻¹(r×d) for body i (read only)."""
+    cx = ry * dz - rz * dy
+    cy = rz * dx - rx * dz
+    cz = rx * dy - ry * dx
+    m = inv_i[i]
+    return (cx * (m[0, 0] * cx + m[0, 1] * cy + m[0, 2] * cz)
+            + cy * (m[1, 0] * cx + m[1, 1] * cy + m[1, 2] * cz)
+            + cz * (m[2, 0] * cx + m[2, 1] * cy + m[2, 2] * cz))
+
+
+@njit(cache=True, inline="always")
+def _basis(nx, ny, nz):
+    """Two unit tangents (t1, t2) with (n, t1, t2) right-handed; a fixed function of n, so the
+    friction impulse kept for warm starting means the same thing next step."""
+    if abs(nx) >= 0.57735:
+        s = 1.0 / math.sqrt(nx * nx + ny * ny)
+        ax, ay, az = ny * s, -nx * s, 0.0
+    else:
+        s = 1.0 / math.sqrt(ny * ny + nz * nz)
+        ax, ay, az = 0.0, nz * s, -ny * s
+    return ax, ay, az, ny * az - nz * ay, nz * ax - nx * az, nx * ay - ny * ax
 
 
 @njit(cache=True, nogil=True)
@@ -85,12 +108,12 @@ def prepare_friction(start, ca, cb, n, ra, rb, mu, inv_mass, inv_i, t1, t2, fa, 
             rho += math.sqrt(dx * dx + dy * dy + dz * dz)
         radius[k] = rho * inv_k
         fmu[k] = mu[s0]
-        k1 = inv_mass[a] + _arm_mass(inv_i, a, fa[k, 0], fa[k, 1], fa[k, 2], ax, ay, az)
-        k2 = inv_mass[a] + _arm_mass(inv_i, a, fa[k, 0], fa[k, 1], fa[k, 2], bx, by, bz)
+        k1 = inv_mass[a] + arm_mass(inv_i, a, fa[k, 0], fa[k, 1], fa[k, 2], ax, ay, az)
+        k2 = inv_mass[a] + arm_mass(inv_i, a, fa[k, 0], fa[k, 1], fa[k, 2], bx, by, bz)
         kt = _inv_inertia_along(inv_i, a, nx, ny, nz)
         if b >= 0:
-            k1 += inv_mass[b] + _arm_mass(inv_i, b, fb[k, 0], fb[k, 1], fb[k, 2], ax, ay, az)
-            k2 += inv_mass[b] + _arm_mass(inv_i, b, fb[k, 0], fb[k, 1], fb[k, 2], bx, by, bz)
+            k1 += inv_mass[b] + arm_mass(inv_i, b, fb[k, 0], fb[k, 1], fb[k, 2], ax, ay, az)
+            k2 += inv_mass[b] + arm_mass(inv_i, b, fb[k, 0], fb[k, 1], fb[k, 2], bx, by, bz)
             kt += _inv_inertia_along(inv_i, b, nx, ny, nz)
         mass_t1[k] = 1.0 / k1 if k1 > 0.0 else 0.0
         mass_t2[k] = 1.0 / k2 if k2 > 0.0 else 0.0

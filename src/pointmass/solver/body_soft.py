@@ -75,16 +75,15 @@ solves them (``joint_soft``: warm start, soft solve, relax in the pose the drift
 point blocks of a tree of joints solved exactly, aimed at the pose the substep ends in; no
 projection).
 
-Where it stands (issue 26; ``World()``'s body stage since stop 39, ``body_step="soft"``).
-Measured with unit boxes (1 kg, μ 0.5), dt 1/60, sleep off (the "impulses" stage's figures in
-brackets): towers
+Where it stands (issue 26; ``World()``'s body stage since stop 39, its only one since stop 44).
+Measured with unit boxes (1 kg, μ 0.5), dt 1/60, sleep off (the impulses stage's figures, the
+stage before it, in brackets): towers
 of 5, 10, 20, 30 boxes drift 0.06, 0.10, 1.3, 1.1 mm sideways in 60 s (20 and 30 fall); the
 210-box pyramid's apex 0.2 mm, 0.28 mm/s at 10 s (8.0 mm); two boxes colliding without gravity
 keep linear and angular momentum to 1.4e-13 (3.5e-3 with e 0, μ 0); a 1 m box dropped from
 0.9–1.1 m with e 0.5 rebounds to 0.2426–0.2474·h since the leapfrog (0.27–0.31·h; at stop
 41 0.2416–0.2499·h, the semi-implicit flight at h losing h·v/2 of height falling and rising).
-The tests of the earlier stage's exact figures name their stage and are re-derived for this
-one (tests/physics/rigid). Collision runs once a step, so fast bodies could end steps deep in
+Collision runs once a step, so fast bodies could end steps deep in
 what no row followed: the world's continuous stage after this step (``body_continuous``)
 moves them back to their time of impact with static bodies and planes (no box passes the
 thin wall) and parts pairs of a fast and a moving body that a step left deep; 7 of the 1 000
@@ -118,7 +117,6 @@ from ..rigid.step import integrate_positions, integrate_velocities
 from . import body_manifolds as bm
 from . import body_passes as bp
 from . import joint_friction, joint_soft, soft_energy
-from .body_stages import _arm_mass
 from .borrow import borrowed, keep_alive, scratch, zeroed
 from .kernels import bounce_target
 from .settings import SolverSettings
@@ -336,9 +334,9 @@ def refresh(start, ca, cb, n, la, lb, r0a, r0b, depth0, mu, inv_mass, inv_i, pos
             else:
                 rb[c, 0], rb[c, 1], rb[c, 2] = mx, my, mz
             ra[c, 0], ra[c, 1], ra[c, 2] = mx - pos[a, 0], my - pos[a, 1], mz - pos[a, 2]
-        k = inv_mass[a] + _arm_mass(inv_i, a, ra[c, 0], ra[c, 1], ra[c, 2], nx, ny, nz)
+        k = inv_mass[a] + bm.arm_mass(inv_i, a, ra[c, 0], ra[c, 1], ra[c, 2], nx, ny, nz)
         if b >= 0:
-            k += inv_mass[b] + _arm_mass(inv_i, b, rb[c, 0], rb[c, 1], rb[c, 2], nx, ny, nz)
+            k += inv_mass[b] + bm.arm_mass(inv_i, b, rb[c, 0], rb[c, 1], rb[c, 2], nx, ny, nz)
         mass_n[c] = 1.0 / k if k > 0.0 else 0.0
     bm.prepare_friction(start, ca, cb, n, ra, rb, mu, inv_mass, inv_i, t1, t2, fa, fb, mass_t1,
                         mass_t2, mass_tw, radius, fmu)

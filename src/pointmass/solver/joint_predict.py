@@ -6,19 +6,18 @@ Passes repeated until the predicted gaps vanish are Newton's method on C(x_end(v
 the Jacobian of the start pose: the step ends with the joints shut (SHAKE; Ryckaert, Ciccotti
 and Berendsen 1977), and its velocity is the chord from the start pose to that end.
 
-Why not the linear rows with a drift bias Ċ = −β·C/dt (Baumgarte, what ran before). Linear
-rows keep the joint point's velocity tangent to the start pose, so the drift leaves the
-joint open by the sagitta ½(ω·dt)²·r every step: a 1 m pendulum released level opened
-2.7 mm at the bottom of its swing at dt 1/60, a double pendulum of two 0.5 m boxes 5 mm at
-12 rad/s (the projection's slop, ``joint_project``). And the velocity rows only turn a
-velocity by shortening it: a velocity made tangent to the start pose each step loses the
-fraction (ω·dt)² of its energy a step (0.55 % at the pendulum's bottom), which the bias then
-gave back by chance: the pendulum's energy wandered −9.4 % … +1.5 % in 20 s, the double
-pendulum's fell 36 %. The chord is what a symplectic constrained integrator moves along
-(SHAKE is leapfrog on the constraint manifold): the energy then only oscillates, by what
-semi-implicit Euler's own first-order error gives the same pendulum in its angle
-(±2.3 % of m·g·L at dt 1/60, ±0.57 % with 4 substeps; the soft step's leapfrog, stop 42:
-0.0063 %).
+Why not the linear rows with a drift bias Ċ = −β·C/dt (Baumgarte, what ran before). Linear rows keep
+the joint point's velocity tangent to the start pose, so the drift leaves the joint open by the
+sagitta ½(ω·dt)²·r every step: a 1 m pendulum released level opened 2.7 mm at the bottom of its
+swing at dt 1/60, a double pendulum of two 0.5 m boxes 5 mm at 12 rad/s (the projection's slop, in
+the impulses stage that ran before the soft step). And the velocity rows only turn a velocity by
+shortening it: a velocity made tangent to the start pose each step loses the fraction (ω·dt)² of its
+energy a step (0.55 % at the pendulum's bottom), which the bias then gave back by chance: the
+pendulum's energy wandered −9.4 % … +1.5 % in 20 s, the double pendulum's fell 36 %. The chord is
+what a symplectic constrained integrator moves along (SHAKE is leapfrog on the constraint manifold):
+the energy then only oscillates, by what semi-implicit Euler's own first-order error gives the same
+pendulum in its angle (±2.3 % of m·g·L at dt 1/60, ±0.57 % with 4 substeps; the soft step's
+leapfrog, stop 42: 0.0063 %).
 
 Only the joints of the exact solve (``joint_tree`` DIRECT and LOOP: forests and their loops)
 aim so: each pass meets all their targets at once, so the passes are Newton's. Joints left to
@@ -29,11 +28,9 @@ unconverged by the 30-pass cap, and the full closure fed the error until it blew
 keep their Baumgarte and speculative targets too: aimed at the end pose, the ragdoll demo at
 rest was left up to 1.0° past a limit (seeds 1–3, 3 s) against 0.57° without.
 
-A step whose velocity solve would gain kinetic energy is redone by the energy guard
-(``body_energy``) without aiming (``JointRows.predict``), as before: the chord's velocity can
-be longer than the start's by O((ω·dt)²), which a free jointed pair turning at 2 rad/s meets
-every other step (its angular momentum is then kept to 0.17 % in 10 s, not to 4e-10 as with
-every step aimed). Under gravity the pendulums never met it.
+The soft step stops aiming in a pass that predicts no better than the last
+(``joint_soft.solve``: ``JointRows.predict``): the chord's velocity can be longer than the
+start's by O((ω·dt)²).
 """
 
 from __future__ import annotations

@@ -49,7 +49,7 @@ A bias closes a gap at the contacts' push-out speed (``SolverSettings.contact_sp
 ``contactSpeed``) at most: a joint made 0.5 m open is pulled shut, not thrown shut.
 
 What keeps random jointed scenes from exploding (benchmarks/rigid_fuzz.py, seeds 0–199, 300
-steps, ``World(body_step="soft")``, 143 jointed scenes: 11 exploded before, > 1e4 m/s without
+steps, the soft step, 143 jointed scenes: 11 exploded before, > 1e4 m/s without
 an error, 6 in 0–99 and 5 in 100–199; now 0). Most of those held a light body by two joints to
 one other body (a ball and a hinge, two hinges on different axes: over-constrained) at arms of
 4–9 m, with mass ratios to 1e5. Measured, each of three things threw them, and each is now
@@ -114,7 +114,7 @@ test_joint_chains.py), holding the weight of the bridge with the spring of one p
 S·F/ω², 0.085 mm. Rigid, a row's give is none whatever the load: aimed at Ċ = −C/h through
 the tree (each pass exact given the tree), the drift closes the gap and the relax takes back
 the velocity that closed it, and the bridge stays within 3.5e-7 m (600 steps). Aimed at the
-pose the substep ends in, as the tree's joints are (``joint_predict``; the default stage), it
+pose the substep ends in, as the tree's joints are (``joint_predict``), it
 stayed within 1.5e-10 m, but in random loops (rings and chains anchored at both ends, 2–6
 bodies of 1 g–10 t, 60 scenes of 200 steps) one threw a body 4e18 m within a substep: a
 four-bar held by a hinge's rigid rows and the loop's near its toggle pose, where the end-pose

@@ -1,5 +1,5 @@
-"""The joints' part of the body stage (``body_solver``): prepare and warm start, one velocity
-pass, one position pass, and keeping the impulses; the kernels are in ``joint_stages`` (the
+"""The joints' rows for the soft step (``joint_soft``): prepare and warm start, one velocity
+pass, and keeping the impulses; the kernels are in ``joint_stages`` (the
 angular rows, and the point blocks of the joints the tree solve does not take) and
 ``joint_direct`` (the point blocks of a forest of joints, solved exactly each pass;
 ``joint_tree`` picks them)."""
@@ -14,7 +14,7 @@ import numpy as np
 from ..rigid.joint_rows import LIMIT
 from . import joint_direct as jd
 from . import joint_loops as jl
-from . import joint_predict, joint_project
+from . import joint_predict
 from . import joint_stages as js
 from . import joint_tree as jt
 
@@ -64,14 +64,14 @@ class JointRows:
     keep: np.ndarray | None = None
     #: Box2D's soft rows (``joint_soft``) for the Gauss–Seidel rows whose target carries a
     #: position bias: the impulse is mass_scale·(the rigid row's) − impulse_scale·(what the
-    #: row has accumulated). 1 and 0: rigid rows (the default stage, and every relax pass).
+    #: row has accumulated). 1 and 0: rigid rows (``prepare``'s, and every relax pass).
     mass_scale: float = 1.0
     impulse_scale: float = 0.0
     #: Fastest relative velocity [m/s] a point block's aimed target may ask for (the soft
-    #: step's push-out cap, ``joint_soft``); inf: no cap (the default stage).
+    #: step's push-out cap, ``joint_soft``); inf: no cap (``prepare``'s).
     speed: float = math.inf
     #: Whether the LOOP joints' point blocks aim at the end pose (``joint_predict``) as the
-    #: tree's do (the default stage), or keep the targets ``bias`` holds (``joint_soft``:
+    #: tree's do (``prepare``'s), or keep the targets ``bias`` holds (``joint_soft``:
     #: Ċ = −C/h). Rigid rows through the tree either way (``joint_loops.solve``).
     aim_loops: bool = True
     #: Per angular row (J, 3): whether it is solved through the tree as a rigid row
@@ -203,14 +203,3 @@ def keep(joints, rows: JointRows) -> None:
     """Keep this step's angular impulses for the next warm start (the point block's already
     accumulate in ``joints.point``)."""
     js.keep(rows.axis, rows.row, rows.lam, joints.turn, rows.mode)
-
-
-def position_pass(bodies, joints, rows: JointRows) -> bool:
-    """One projection pass (``joint_project``); True when every joint was already within the
-    slops (so the passes may stop)."""
-    j = joints.arrays()
-    b = bodies
-    linear, angular = joint_project.project_pass(
-        j.a, j.b, j.local_a, j.local_b, j.frame_a, j.frame_b, j.kind, j.limits, b.inv_mass,
-        b.inv_inertia_world, b.position, b.orientation, rows.mode)
-    return linear == 0.0 and angular == 0.0

@@ -1,5 +1,5 @@
 """The solver's stages for joints (``pointmass.rigid.joints``): a point row block and up to three
-angular rows per joint, in the contacts' stage order (``body_stages``).
+angular rows per joint, solved beside the contacts in the soft step (``joint_soft``).
 
 Point block. The relative velocity of the two joint points, Ċ = vB + ωB×rB − vA − ωA×rA, changes
 by K·P for an impulse P on B (−P on A), with K = (wA + wB)·1 − [rA]× IA⁻¹ [rA]× − [rB]× IB⁻¹ [rB]×
@@ -13,19 +13,16 @@ low or high − angle, whichever bound is nearer), whose accumulated impulse nev
 still open by C may close by C within the step and no more (target Ċ ≥ −C/dt: the contacts'
 speculative rule, so a fast swing stops at the limit instead of overshooting it).
 
-For the joints of the exact solve (``joint_tree`` DIRECT, LOOP) the point blocks'
-targets set here are replaced in every pass by ``joint_predict``'s, which aim at the pose
-the step ends in; these stay for the joints left to Gauss–Seidel and for the energy guard's
-redo (``body_energy``). Drift (the separation C the step's straight-line motion leaves) is
-removed in the velocity rows by a bias, Ċ = −β·C/dt (Baumgarte; Box2D v3's soft step is the
-same with a spring-damper rate), and what exceeds a slop after the drift by projection
-(``joint_project``). Measured alone, projection (Box2D v2's ``SolvePositionConstraints``) moves
-the bodies without their velocities, so every step the next solve throws away the mismatch: a
-jointed pair tumbling freely at 2 rad/s lost 18 % of its angular momentum and 8 % of its energy
-in 10 s (dt 1/60). The bias acts through equal and opposite impulses at the joint points, so
-momentum is kept to O(C·P): 0.13 % and 0.08 % with β = 0.5, the pendulum's period (within 4e-5)
-and energy band unchanged. The bias alone lets fast-turning bones open their joints
-(``joint_project``).
+For the joints of the exact solve (``joint_tree`` DIRECT, LOOP) the point blocks' targets set here
+are replaced in every pass by ``joint_predict``'s, which aim at the pose the step ends in; these
+stay for the joints left to Gauss–Seidel. Drift (the separation C the step's straight-line motion
+leaves) is removed in the velocity rows by a bias, Ċ = −β·C/dt (Baumgarte; Box2D v3's soft step is
+the same with a spring-damper rate: ``joint_soft`` gives these rows its soft targets). Measured
+alone, projection (Box2D v2's ``SolvePositionConstraints``) moves the bodies without their
+velocities, so every step the next solve throws away the mismatch: a jointed pair tumbling freely at
+2 rad/s lost 18 % of its angular momentum and 8 % of its energy in 10 s (dt 1/60). The bias acts
+through equal and opposite impulses at the joint points, so momentum is kept to O(C·P): 0.13 % and
+0.08 % with β = 0.5, the pendulum's period (within 4e-5) and energy band unchanged.
 
 The point blocks of the joints that form a forest (chains, ragdolls, a top on its tip) are not
 swept here but solved exactly, all at once, by ``joint_direct`` (``joint_tree``: which, and

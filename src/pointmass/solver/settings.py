@@ -81,8 +81,8 @@ class SolverSettings:
             block (``partition.py``); chosen by the contacts only, so any thread count gives
             the same bits. It did not pay at any size measured, so it starts above them all.
 
-    The bodies' soft step (``World(body_step="soft")``, the default; ``solver/body_soft.py``,
-    Box2D v3's solver), its contacts:
+    The bodies' soft step (``World()``'s body stage; ``solver/body_soft.py``, Box2D v3's
+    solver), its contacts:
 
     Attributes:
         soft_substeps: Substeps of one body step (Box2D's ``subStepCount``): each kicks,

@@ -44,7 +44,7 @@ import numpy as np
 from ..contacts import ContactBuffer
 from ..impulse_history import ImpulseHistory
 from ..particles import Particles
-from . import body_solver, direct, joint_friction, parallel, remeasure, stages
+from . import direct, parallel, remeasure, stages
 from .kernels import Bodies, ContactSet
 from .partition import block_rows
 from .settings import SolverSettings
@@ -197,23 +197,6 @@ class Solver:
         position = p.position
         position += bod.disp  # every stage moved ``disp`` only (see ``kernels.Bodies``)
         return stats
-
-    def solve_bodies(self, bodies, contacts, acceleration: np.ndarray, history: ImpulseHistory,
-                     dt: float, joints=None) -> body_solver.BodyRows:
-        """The body stage's velocity half (prepare, warm start, solve velocities) for rigid-body
-        contact points; the caller drifts the bodies, then calls ``project_bodies``. Runs after
-        the particle stages of the same substep (``body_solver.py``). ``joints`` (a
-        ``rigid.joint_set.Joints``) are solved in the same passes."""
-        passes = body_solver.MAX_VELOCITY_PASSES if self.max_passes is None \
-            else max(int(self.max_passes), 1)
-        joint_friction.apply(bodies, joints, float(dt))
-        return body_solver.solve_velocities(bodies, contacts, acceleration, history, float(dt),
-                                            float(self.restitution_threshold), passes, joints)
-
-    def project_bodies(self, bodies, rows: body_solver.BodyRows,
-                       history: ImpulseHistory, joints=None) -> None:
-        """The body stage's position half: projection, world inertia, impulses kept."""
-        body_solver.project_positions(bodies, rows, history, joints)
 
     def _sequential(self, p, bod, con, contacts, history, dt) -> tuple[SolveStats, ContactSet]:
         threshold = float(self.restitution_threshold)

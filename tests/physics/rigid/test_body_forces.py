@@ -33,15 +33,11 @@ def momenta(world):
     return linear, angular
 
 
-STAGES = ("impulses", "soft")
-
-
-@pytest.mark.parametrize("stage", STAGES)
-def test_body_spring_keeps_linear_and_angular_momentum(stage):
+def test_body_spring_keeps_linear_and_angular_momentum():
     """Equal and opposite at the two attachment points: Σ p and Σ x × p + Iω kept to 1e-9
     (the soft step gives the spring's force in each of its substeps, at the world points it
     was found at; holding the torque about a centre that moves instead gained 3.3e-3 here)."""
-    world = pm.World(gravity=(0.0, 0.0, 0.0), body_step=stage)
+    world = pm.World(gravity=(0.0, 0.0, 0.0))
     a = world.add_body(Box((0.3, 0.2, 0.5)), (0.0, 0.0, 0.0), (0.9, 0.2, -0.3, 0.1), mass=2.0,
                        velocity=(0.5, -0.2, 0.1), angular_velocity=(1.0, 0.5, -2.0))
     b = world.add_body(Box((0.4, 0.4, 0.2)), (2.0, 0.5, -0.3), (0.7, -0.1, 0.4, 0.3), mass=3.0,
@@ -81,13 +77,12 @@ def test_centred_body_spring_oscillates_at_the_two_body_frequency():
     assert period == pytest.approx(expected, rel=0.01)
 
 
-@pytest.mark.parametrize("stage", STAGES)
-def test_anchored_spring_hangs_a_body_at_its_stretch(stage):
+def test_anchored_spring_hangs_a_body_at_its_stretch():
     """At rest a damped spring holds m·g at the stretch m·g/k, whatever its damping, and the
     body is at rest at the end of every step. (The soft step gave the spring's whole impulse
     in the first of its 4 substeps and gravity in each: the body ended each step at
     v = −(4 − 1)/2·g·h = −0.031 m/s, which the damper (c = 5) read, holding it at 1.6106 m.)"""
-    world = pm.World(gravity=(0.0, -9.81, 0.0), body_step=stage)
+    world = pm.World(gravity=(0.0, -9.81, 0.0))
     body = world.add_body(Sphere(0.2), (0.0, 1.0, 0.0), mass=2.0, linear_damping=0.05)
     world.add(AnchoredBodySpring(body, (0, 0, 0), (0.0, 3.0, 0.0), k=50.0, rest=1.0,
                                  damping=5.0))
@@ -97,12 +92,11 @@ def test_anchored_spring_hangs_a_body_at_its_stretch(stage):
     assert abs(body.velocity[1]) < 1e-9
 
 
-@pytest.mark.parametrize("stage", STAGES)
-def test_a_spring_at_its_equilibrium_holds_the_body_still_every_step(stage):
+def test_a_spring_at_its_equilibrium_holds_the_body_still_every_step():
     """Hung at y = 3 − 1 − m·g/k at rest, the body stays there, v = 0 at every step's end
     (to rounding): the spring's force and gravity act in the same substeps."""
     m, k = 2.0, 50.0
-    world = pm.World(gravity=(0.0, -9.81, 0.0), body_step=stage)
+    world = pm.World(gravity=(0.0, -9.81, 0.0))
     body = world.add_body(Sphere(0.2), (0.0, 3.0 - 1.0 - m * 9.81 / k, 0.0), mass=m)
     world.add(AnchoredBodySpring(body, (0, 0, 0), (0.0, 3.0, 0.0), k=k, rest=1.0, damping=5.0))
     start = body.position.copy()
@@ -189,15 +183,14 @@ def test_explosion_pushes_outward_with_falloff_and_stops():
     assert box.velocity[1] > after[5, 1]  # pushed back up from below
 
 
-@pytest.mark.parametrize("stage", STAGES)
 @pytest.mark.parametrize("density", [300.0, 700.0])
-def test_buoyancy_floats_a_box_where_weight_equals_displaced_water(density, stage):
+def test_buoyancy_floats_a_box_where_weight_equals_displaced_water(density):
     """The box settles where its weight equals the water it displaces, and stops there: its
     motion over a step, Δy/dt, and its velocity at the step's end. (The soft step gave the
     buoyancy's impulse once a step, in the first of 4 substeps, and gravity in each: a
     floating box at rest ended each step at v = −(4 − 1)/2·g·h = −0.0307 m/s at dt 1/120.)"""
     half = 0.5
-    world = pm.World(gravity=(0.0, -9.81, 0.0), body_step=stage)
+    world = pm.World(gravity=(0.0, -9.81, 0.0))
     box = world.add_body(Box((half, half, half)), (0.0, 1.0, 0.0), density=density,
                          linear_damping=0.2, angular_damping=0.2)
     world.add(BodyBuoyancy(box, (0.0, 0.0, 0.0), max_depth=half, volume=(2 * half) ** 3,
@@ -213,12 +206,11 @@ def test_buoyancy_floats_a_box_where_weight_equals_displaced_water(density, stag
     assert abs(box.velocity[1]) < 1e-3
 
 
-@pytest.mark.parametrize("stage", STAGES)
-def test_a_box_floating_at_its_waterline_stays_at_rest(stage):
+def test_a_box_floating_at_its_waterline_stays_at_rest():
     """A 300 kg/m³ box of 1 m³ put at rest where it floats (0.3 m under the water) stays there:
     v = 0 at every step's end (to rounding), the box unmoved."""
     half = 0.5
-    world = pm.World(gravity=(0.0, -9.81, 0.0), body_step=stage)
+    world = pm.World(gravity=(0.0, -9.81, 0.0))
     box = world.add_body(Box((half, half, half)), (0.0, half - 0.3, 0.0), density=300.0)
     world.add(BodyBuoyancy(box, (0.0, 0.0, 0.0), max_depth=half, volume=(2 * half) ** 3,
                            water_height=0.0))
@@ -228,27 +220,25 @@ def test_a_box_floating_at_its_waterline_stays_at_rest(stage):
     assert abs(box.position[1] - (half - 0.3)) < 1e-12
 
 
-@pytest.mark.parametrize("stage", STAGES)
-def test_constant_force_and_torque_give_momenta_f_t_and_tau_t(stage):
+def test_constant_force_and_torque_give_momenta_f_t_and_tau_t():
     """A box spinning about a tilted axis and drifting, pushed by a constant force through its
     centre and a constant torque, without gravity: p = p₀ + F·t and, about the origin,
     L = L₀ + Σ x_k × F·h + τ·t (1e-9 relative): the force acts through the centre x_k where
-    each integration step of h starts (the world's step, or the soft step's substep, which
-    finds its forces again), at x₀ + k·h·v₀ plus a multiple of F, which x × F does not see.
-    Semi-implicit Euler ("impulses") kicks at x₀ … x_{N−1}: Σ x_k × F·h = (N·x₀ +
-    h·v₀·N(N−1)/2) × F·h. Leapfrog (the soft step) kicks by h/2 at x₀, by h at x₁ … x_{N−1},
+    each integration step of h starts (the soft step's substep, which finds its forces
+    again), at x₀ + k·h·v₀ plus a multiple of F, which x × F does not see. Leapfrog (the soft
+    step) kicks by h/2 at x₀, by h at x₁ … x_{N−1},
     and its reported velocity takes the closing half kick of the last substep's force, found at
     x_{N−1}: (N·x₀ + h·v₀·(N² − 1)/2) × F·h."""
     force, torque = np.array([0.3, -0.2, 0.5]), np.array([0.4, 0.1, -0.25])
-    world = pm.World(gravity=(0.0, 0.0, 0.0), body_step=stage)
+    world = pm.World(gravity=(0.0, 0.0, 0.0))
     box = world.add_body(Box((0.3, 0.2, 0.5)), (0.5, 1.0, -0.2), (0.9, 0.2, -0.3, 0.1),
                          mass=2.0, velocity=(0.5, -0.2, 0.1), angular_velocity=(1.0, 0.5, -2.0))
     world.add(BodyForce(lambda bodies, i, dt: (force, torque), [box]))
     p0, l0 = momenta(world)
     dt, steps = 1 / 60, 240
-    parts = DEFAULTS.soft_substeps if stage == "soft" else 1
+    parts = DEFAULTS.soft_substeps
     n, h = steps * parts, dt / parts
-    pairs = (n * n - 1) / 2 if stage == "soft" else n * (n - 1) / 2
+    pairs = (n * n - 1) / 2
     moment = np.cross(n * box.position + h * box.velocity * pairs, force) * h
     for _ in range(steps):
         world.step(dt)
@@ -308,16 +298,15 @@ def test_spring_energy_counts_in_the_world():
     assert world.kinetic_energy() + world.potential_energy() == pytest.approx(e0, rel=5e-3)
 
 
-@pytest.mark.parametrize("stage", STAGES)
-def test_a_body_spring_keeps_its_energy_over_twenty_seconds(stage):
+def test_a_body_spring_keeps_its_energy_over_twenty_seconds():
     """The spring above at dt 1/60 for 20 s (ω = √(k/μ) = 4.5 rad/s, ω·dt = 0.075): semi-
-    implicit Euler's energy wobbles by about ω·h/2 (h its integration step: dt, or the soft
-    step's dt/4) and does not grow. The soft step found the forces once a step and spread them
+    implicit Euler's energy wobbles by about ω·h/2 (h its integration step, the soft step's
+    dt/4) and does not grow. The soft step found the forces once a step and spread them
     over its substeps; for a force that depends on where the bodies are, that is not semi-
     implicit Euler, and the energy grew by (1 − 5/8)·(ω·dt)² a step: 12× in 20 s. It finds
-    them again every substep. Measured: ±3.9 % ("impulses"), 0 … +0.026 % (soft: leapfrog
-    since stop 42, O((ω·h)²); ±0.94 % with semi-implicit Euler); bound ω·h."""
-    world = pm.World(gravity=(0.0, 0.0, 0.0), body_step=stage)
+    them again every substep. Measured: 0 … +0.026 % (leapfrog since stop 42, O((ω·h)²);
+    ±0.94 % with semi-implicit Euler, ±3.9 % with the impulses stage at h = dt); bound ω·h."""
+    world = pm.World(gravity=(0.0, 0.0, 0.0))
     a = world.add_body(Sphere(0.1), (0, 0, 0), mass=1.0)
     b = world.add_body(Sphere(0.1), (2.5, 0, 0), mass=1.0)
     world.add(BodySpring(a, (0, 0, 0), b, (0, 0, 0), k=10.0, rest=2.0))
@@ -326,7 +315,7 @@ def test_a_body_spring_keeps_its_energy_over_twenty_seconds(stage):
     for _ in range(1200):
         world.step(1 / 60)
         energies.append(world.kinetic_energy() + world.potential_energy())
-    band = math.sqrt(10.0 / 0.5) / 60 / (DEFAULTS.soft_substeps if stage == "soft" else 1)
+    band = math.sqrt(10.0 / 0.5) / 60 / DEFAULTS.soft_substeps
     assert (1 - band) * e0 < min(energies) and max(energies) < (1 + band) * e0
 
 

@@ -1,11 +1,6 @@
-"""The body velocity passes' prepared angular terms (``solver/body_passes.py``), checked against
-the rigid-body formulas written out here with numpy.
-
-A normal row along n at arms rA, rB has the effective mass 1/(wA + wB + (rA×n)·IA⁻¹(rA×n) +
-(rB×n)·IB⁻¹(rB×n)); an impulse of that mass times the velocity error, applied through the
-prepared terms, must leave the point's separating velocity exactly at its target in one pass
-(a single row is solved exactly), whatever the bodies' orientations and spins.
-"""
+"""The soft step's prepared angular terms of its contact rows (``solver/body_passes.py``),
+checked against the rigid-body formulas written out here with numpy (r×d and I⁻¹(r×d) per row,
+whatever the bodies' orientations)."""
 
 import numpy as np
 import pytest
@@ -54,37 +49,3 @@ def test_prepared_terms_are_the_cross_products_and_inertia_responses(scenery):
                              ia @ np.cross(ra, t2), b_side(ib @ np.cross(rb, t1)),
                              b_side(ib @ np.cross(rb, t2)), ia @ n, b_side(ib @ n)])
     np.testing.assert_allclose(farm[0], want_f, rtol=1e-14, atol=1e-14)
-
-
-@pytest.mark.parametrize("scenery", [False, True])
-def test_one_normal_row_reaches_its_target_in_one_pass(scenery):
-    rng = np.random.default_rng(7)
-    c = _one_manifold(rng, scenery)
-    n, ra, rb = c["n"][0], c["ra"][0], c["rb"][0]
-    inv_mass = np.array([0.7, 1.9])
-    ia, ib = c["inv_i"]
-    vel = rng.normal(size=(2, 3))
-    ang = rng.normal(size=(2, 3))
-
-    def separating(v, w):
-        vs = (v[0] + np.cross(w[0], ra)) @ n
-        return vs if scenery else vs - (v[1] + np.cross(w[1], rb)) @ n
-
-    k = inv_mass[0] + np.cross(ra, n) @ ia @ np.cross(ra, n)
-    if not scenery:
-        k += inv_mass[1] + np.cross(rb, n) @ ib @ np.cross(rb, n)
-    target = separating(vel, ang) + 0.3  # the point must open 0.3 m/s faster: a push
-    arm = np.empty((1, 12))
-    farm = np.empty((1, 30))
-    bp.prepare_arms(c["start"], c["ca"], c["cb"], c["n"], ra[None], rb[None], c["fa"], c["fb"],
-                    c["t1"], c["t2"], c["inv_i"], arm, farm)
-    impulse = np.zeros(1)
-    mu = radius = mass_t1 = mass_t2 = mass_tw = np.zeros(1)  # μ = 0: the normal row alone
-    jt1, jt2, jtw = np.zeros(1), np.zeros(1), np.zeros(1)
-    passes = bp.solve_velocities(
-        c["start"], c["ca"], c["cb"], c["n"], c["t1"], c["t2"], mu, radius, np.array([1 / k]),
-        mass_t1, mass_t2, mass_tw, np.array([target]), inv_mass, vel, ang, impulse, jt1, jt2,
-        jtw, arm, farm, 1e-12, 5)
-    assert separating(vel, ang) == pytest.approx(target, abs=1e-12)
-    assert impulse[0] == pytest.approx(0.3 / k, rel=1e-12)
-    assert passes == 2  # the second pass changes nothing

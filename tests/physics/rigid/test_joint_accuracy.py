@@ -7,22 +7,12 @@ released level, whose total is 0 with the potential's zero at the pivot): a pend
 level has no other scale.
 
 ``World()`` (the soft step, leapfrog over 4 substeps) meets both: gap < 0.1 µm, energy
-−0.0063 … 0 % (single pendulums), −0.027 … 0 % (double), the tests at the end. Semi-implicit
+−0.0063 … 0 % (single pendulums), −0.027 … 0 % (double). Semi-implicit
 Euler, its integrator before stop 42, swung it ±0.57 % (−0.89 … +0.77 % double): first order.
 
-The "impulses" stage (``World(body_step="impulses")``, kept to compare), measured here:
-- the gap: < 1e-9 m in every scene (before, 5.0 mm: the projection's slop; the joints now aim
-  at the pose the step ends in, ``solver/joint_predict``);
-- the energy no longer drifts (before: −9.4 % … +1.5 % for the pendulum, −37 % … 0 % and
-  −36 % at the end for the double one), but KE + PE still swings by semi-implicit Euler's own
-  first-order error, ±2.3 % of m·g·L at dt 1/60 for the exact pendulum in its angle, which no
-  joint solve can take out of a first-order step: measured −2.2 … +2.5 % (box), −2.8 …
-  +3.1 % (double). Those tests keep the measured band as a ratchet; the issue's ±0.5 % is met
-  with 8 substeps for the single pendulums (tested below; the double pendulum's is an
-  xfail(strict): the energy guard's redo), and its own xfail(strict) records it at the
-  defaults. What the integrator keeps, its modified energy
-  E + (dt/2)·Σ m·g⃗·v (to first order semi-implicit Euler's shadow Hamiltonian), moves by
-  +0.3 % (box), +0.6 % (sphere) in 20 s, +0.9 % without a trend (double): ``SHADOW``.
+The impulses stage before the soft step (removed at stop 44) held the gap under 1e-9 m but
+swung KE + PE by semi-implicit Euler's own first-order error at h = dt: −2.2 … +2.5 % (box),
+−2.8 … +3.1 % (double); the issue's ±0.5 % took it 8 substeps.
 """
 
 import functools
@@ -42,9 +32,9 @@ GAP = 0.5e-3
 ENERGY = 0.005
 
 
-def _pendulum(joint: str, shape: str, substeps: int = 1, body_step: str = "impulses"):
+def _pendulum(joint: str, shape: str, substeps: int = 1):
     """1 kg on a 1 m arm from a world anchor at the origin, released level (along +x)."""
-    world = pm.World(gravity=(0.0, -G, 0.0), substeps=substeps, body_step=body_step)
+    world = pm.World(gravity=(0.0, -G, 0.0), substeps=substeps)
     body = world.add_body(Box((0.1, 0.1, 0.1)) if shape == "box" else Sphere(0.1),
                           (1.0, 0.0, 0.0), mass=1.0)
     if joint == "ball":
@@ -54,11 +44,11 @@ def _pendulum(joint: str, shape: str, substeps: int = 1, body_step: str = "impul
     return world, 1.0 * G * 1.0
 
 
-def _double(substeps: int = 1, body_step: str = "impulses"):
+def _double(substeps: int = 1):
     """Two 1 kg boxes 0.5 m long on ball joints: the upper one level from the world anchor at
     the origin, the lower one hanging from its tip bent 45° below it; the energy it moves is
     its height above both boxes hanging straight down."""
-    world = pm.World(gravity=(0.0, -G, 0.0), substeps=substeps, body_step=body_step)
+    world = pm.World(gravity=(0.0, -G, 0.0), substeps=substeps)
     upper = world.add_body(Box((0.25, 0.05, 0.05)), (0.25, 0.0, 0.0), mass=1.0)
     bend = math.radians(-45.0)
     lower = world.add_body(Box((0.25, 0.05, 0.05)),
@@ -70,107 +60,28 @@ def _double(substeps: int = 1, body_step: str = "impulses"):
 
 
 def _swing(world, scale):
-    """20 s: the largest joint gap [m], the energy's band as a fraction of ``scale`` (low,
-    high), and the band of the modified energy E + (dt/2)·Σ m·g⃗·v."""
-    b = world.bodies
-    mass = 1.0 / b.inv_mass
-    h = DT / world.substeps
-
-    def energies():
-        e = world.kinetic_energy() + world.potential_energy()
-        return e, e - 0.5 * h * G * float(mass @ b.velocity[:, 1])  # g⃗ = (0, −G, 0)
-
-    e0, m0 = energies()
-    gap, band, shadow = 0.0, [0.0, 0.0], [0.0, 0.0]
+    """20 s: the largest joint gap [m] and the energy's band as a fraction of ``scale`` (low,
+    high)."""
+    e0 = world.kinetic_energy() + world.potential_energy()
+    gap, band = 0.0, [0.0, 0.0]
     for _ in range(STEPS):
         world.step(DT)
         gap = max(gap, float(world.joints.separations().max()))
-        e, m = energies()
-        for out, x in ((band, (e - e0) / scale), (shadow, (m - m0) / scale)):
-            out[0], out[1] = min(out[0], x), max(out[1], x)
-    return gap, band, shadow
+        x = (world.kinetic_energy() + world.potential_energy() - e0) / scale
+        band[0], band[1] = min(band[0], x), max(band[1], x)
+    return gap, band
 
 
 SCENES = {
-    "ball box": lambda s=1, step="impulses": _pendulum("ball", "box", s, step),
-    "ball sphere": lambda s=1, step="impulses": _pendulum("ball", "sphere", s, step),
-    "hinge box": lambda s=1, step="impulses": _pendulum("hinge", "box", s, step),
+    "ball box": lambda s=1: _pendulum("ball", "box", s),
+    "ball sphere": lambda s=1: _pendulum("ball", "sphere", s),
+    "hinge box": lambda s=1: _pendulum("hinge", "box", s),
     "double": _double,
 }
-#: Energy band at the defaults (the ratchet: measured low, high, as fractions of the swing's
-#: energy; the issue's target is ±0.5 %). Before (main at 59c48e3): ball box −9.36 … +1.51 %,
-#: sphere −9.14 … +1.53 %, hinge −9.36 … +1.51 %, double −36.5 … +0.0 %.
-MEASURED = {
-    "ball box": (-0.0222, 0.0249),
-    "ball sphere": (-0.0222, 0.0289),
-    "hinge box": (-0.0222, 0.0249),
-    "double": (-0.0279, 0.0314),
-}
-
-
 @functools.cache
-def _result(name: str, substeps: int = 1, body_step: str = "impulses"):
-    """Each scene is run once per substep count and stage, shared by the tests that read it."""
-    return _swing(*SCENES[name](substeps, body_step))
-
-
-@pytest.mark.parametrize("name", list(SCENES))
-def test_the_joints_stay_shut_and_the_energy_only_wobbles_at_the_defaults(name):
-    """Gap < 0.5 mm (measured < 1e-9 m; before 5.0 mm in every scene). Energy within the
-    measured band + 0.1 % (module docstring: semi-implicit Euler's first-order wobble)."""
-    gap, band, _ = _result(name)
-    assert gap < GAP
-    low, high = MEASURED[name]
-    assert band[0] >= low - 0.001
-    assert band[1] <= high + 0.001
-
-
-#: The band of the modified energy E + (dt/2)·Σ m·g⃗·v over 20 s at the defaults (measured;
-#: a ratchet): it climbs slowly in the single pendulums, +0.016 %/s (box) and +0.03 %/s
-#: (sphere), which the start pose's arms for the turn may explain (the step is SHAKE for the
-#: centres, not a symplectic scheme for the bodies' rotation); the double pendulum's
-#: oscillates within +0.9 % without a trend.
-SHADOW = {"ball box": 0.0032, "ball sphere": 0.0062, "hinge box": 0.0032, "double": 0.0090}
-
-
-@pytest.mark.parametrize("name", list(SCENES))
-def test_the_integrators_modified_energy_stays_within_its_measured_band(name):
-    """What semi-implicit Euler keeps (its shadow energy to first order) moves by < 1 % of
-    the swing's energy in 20 s (measured: ``SHADOW``; the raw energy swings ±2–3 %)."""
-    _, _, shadow = _result(name)
-    assert shadow[0] >= -0.0005
-    assert shadow[1] <= SHADOW[name] + 0.0005
-
-
-@pytest.mark.slow
-@pytest.mark.parametrize("name", ["ball box", "ball sphere", "hinge box", pytest.param(
-    "double", marks=pytest.mark.xfail(strict=True, reason=(
-        "the energy guard (solver/body_energy) redoes every substep whose aimed joint solve "
-        "gains kinetic energy (the chord's O((ω·dt)²)) with the Baumgarte rows: at 8 "
-        "substeps the double pendulum then opens 5.0 mm and loses 42 % in 20 s; allowing "
-        "the chord's work past the guard met ±0.5 % here but let fuzz scenes gain up to "
-        "63 % in a step")))])
-def test_with_eight_substeps_the_energy_is_within_half_a_percent(name):
-    """The issue's target, met once semi-implicit Euler's own error is small enough: 8
-    substeps (dt/8 = 1/480 s). Gap < 0.5 mm, energy within ±0.5 % at every step."""
-    gap, band, _ = _result(name, 8)
-    assert gap < GAP
-    assert -ENERGY <= band[0] and band[1] <= ENERGY
-
-
-@pytest.mark.xfail(strict=True, reason="issue 26 point 6 at World() defaults: semi-implicit "
-                   "Euler at dt 1/60 swings KE + PE by ±2.3 % of m·g·L (±3 % for the double "
-                   "pendulum) whatever the joints do; met with 8 substeps")
-@pytest.mark.parametrize("name", list(SCENES))
-def test_issue_26_point_6_energy_at_the_defaults(name):
-    gap, band, _ = _result(name)
-    assert gap < GAP
-    assert -ENERGY <= band[0] and band[1] <= ENERGY
-
-
-# --- the soft step (``World(body_step="soft")``: ``solver/joint_soft``) ---------------------------
-
-SOFT = "soft"
+def _result(name: str, substeps: int = 1):
+    """Each scene is run once per substep count, shared by the tests that read it."""
+    return _swing(*SCENES[name](substeps))
 
 
 def _leapfrog_band(inertia: float, substeps: int = 4) -> tuple[float, float]:
@@ -201,13 +112,13 @@ SOFT_DOUBLE = (-0.00028, 0.0)
 
 
 @pytest.mark.parametrize("name", list(SCENES))
-def test_soft_step_joints_stay_shut_and_the_energy_is_the_integrators(name):
+def test_the_joints_stay_shut_and_the_energy_is_the_integrators(name):
     """The soft step (4 substeps of leapfrog; the tree's joints aim at the pose each substep
     ends in and are relaxed in it): gap < 0.5 mm (measured < 0.1 µm); the single pendulums'
     energy swings as leapfrog at h = dt/4 swings the exact pendulum in its angle (measured
     −0.0063 … 0 % against its −0.0035 … 0 %): the joints add next to nothing to the
     integrator's error, and lose nothing over 20 s."""
-    gap, band, _ = _result(name, 1, SOFT)
+    gap, band = _result(name)
     assert gap < GAP
     if name == "double":
         low, high = SOFT_DOUBLE
@@ -220,20 +131,20 @@ def test_soft_step_joints_stay_shut_and_the_energy_is_the_integrators(name):
 
 
 @pytest.mark.parametrize("name", list(SCENES))
-def test_issue_26_point_6_energy_with_the_soft_step(name):
+def test_issue_26_point_6_energy_at_the_defaults(name):
     """Issue 26 point 6 at ``World()``'s defaults: gap < 0.5 mm, energy within ±0.5 % at every
     step over 20 s (measured: −0.0063 % … 0 single, −0.027 % … 0 double; semi-implicit Euler
     before the leapfrog: ±0.57 %, double −0.89 … +0.77 %)."""
-    gap, band, _ = _result(name, 1, SOFT)
+    gap, band = _result(name)
     assert gap < GAP
     assert -ENERGY <= band[0] and band[1] <= ENERGY
 
 
 @pytest.mark.slow
 @pytest.mark.parametrize("name", list(SCENES))
-def test_soft_step_with_eight_substeps_the_energy_is_within_half_a_percent(name):
+def test_with_eight_substeps_the_energy_is_within_half_a_percent(name):
     """The issue's target with the soft step once the integrator's own error allows it:
     ``World(substeps=2)``, 8 soft substeps of dt/8. Gap < 0.5 mm, energy within ±0.5 %."""
-    gap, band, _ = _result(name, 2, SOFT)
+    gap, band = _result(name, 2)
     assert gap < GAP
     assert -ENERGY <= band[0] and band[1] <= ENERGY

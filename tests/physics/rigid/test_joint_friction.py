@@ -1,5 +1,5 @@
 """Joint friction (``Joint(friction=τ)``, ``solver/joint_friction.py``): a joint resists its
-bodies' relative turning with at most τ [N·m], in both body stages. Checked against Coulomb's
+bodies' relative turning with at most τ [N·m]. Checked against Coulomb's
 law (a spin slowed at τ/I to a stop), conservation (a couple keeps linear and angular
 momentum; the energy only falls) and statics (a pendulum comes to rest where gravity's torque
 about the pivot is no more than τ)."""
@@ -14,16 +14,14 @@ from pointmass.rigid.joints import BallJoint, HingeJoint
 from pointmass.rigid.shapes import Box, Sphere
 
 DT = 1 / 60
-STAGES = ("impulses", "soft")
 
 
-@pytest.mark.parametrize("body_step", STAGES)
 @pytest.mark.parametrize("kind", ["ball", "hinge"])
-def test_a_spin_on_a_joint_slows_at_torque_over_inertia_to_a_stop(body_step, kind):
+def test_a_spin_on_a_joint_slows_at_torque_over_inertia_to_a_stop(kind):
     """A 1 kg ball of radius 0.5 m (I = 0.1 kg·m²) held at its centre, no gravity, spinning
     at 2 rad/s about the hinge's axis: friction 0.05 N·m slows it at 0.5 rad/s², so it turns
     at 1 rad/s after 2 s and stops at 4 s, and stays stopped."""
-    world = pm.World(gravity=(0.0, 0.0, 0.0), body_step=body_step)
+    world = pm.World(gravity=(0.0, 0.0, 0.0))
     ball = world.add_body(Sphere(0.5), (0.0, 1.0, 0.0), mass=1.0)
     axis = (0.0, 0.0, 1.0)
     joint = BallJoint(ball, (0.0, 0.0, 0.0), friction=0.05) if kind == "ball" else \
@@ -43,9 +41,9 @@ def test_a_joint_s_friction_keeps_both_momenta_and_only_takes_energy():
     """Two boxes joined end to end by a ball joint, no gravity, spinning and tumbling against
     each other: the friction is a couple, so Σp and Σ(x × p + I·ω) about the origin are kept
     (to round-off), the kinetic energy never rises, and their relative turning all but stops. (The
-    soft step: the "impulses" stage's position projection moves jointed bodies without their
-    momenta, 3e-4 of this pair's angular momentum with no friction at all.)"""
-    world = pm.World(gravity=(0.0, 0.0, 0.0), body_step="soft")
+    impulses stage before the soft step lost 3e-4 of this pair's angular momentum with no
+    friction at all: its position projection moved jointed bodies without their momenta.)"""
+    world = pm.World(gravity=(0.0, 0.0, 0.0))
     a = world.add_body(Box((0.3, 0.1, 0.1)), (-0.3, 0.5, 0.2), mass=1.0)
     b = world.add_body(Box((0.3, 0.05, 0.15)), (0.3, 0.5, 0.2), mass=2.0)
     world.add(BallJoint(a, (0.3, 0.0, 0.0), b, friction=0.2))
@@ -75,16 +73,15 @@ def test_a_joint_s_friction_keeps_both_momenta_and_only_takes_energy():
     assert np.abs(a.angular_velocity - b.angular_velocity).max() < 1e-3
 
 
-@pytest.mark.parametrize("body_step", STAGES)
 @pytest.mark.parametrize("friction", [0.3, 1.0])
-def test_a_pendulum_with_joint_friction_comes_to_rest_where_friction_holds_it(body_step,
+def test_a_pendulum_with_joint_friction_comes_to_rest_where_friction_holds_it(
                                                                                friction):
     """A 1 kg box on a 0.5 m arm from a hinge to the world, released level: gravity's torque
     about the pivot is m·g·L·cos θ; it swings down, loses energy every swing and stops where
     that torque is no more than τ (within 1.5° of hanging for τ = 0.3 N·m, 12° for 1 N·m),
     never rising."""
     g = 9.81
-    world = pm.World(gravity=(0.0, -g, 0.0), body_step=body_step)
+    world = pm.World(gravity=(0.0, -g, 0.0))
     box = world.add_body(Box((0.05, 0.05, 0.05)), (0.5, 0.0, 0.0), mass=1.0)
     world.add(HingeJoint(box, (-0.5, 0.0, 0.0), axis=(0.0, 0.0, 1.0), friction=friction))
     bodies = world.bodies

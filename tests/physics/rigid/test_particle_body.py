@@ -9,19 +9,16 @@ from pointmass.keys import body_pair_key, body_plane_key, particle_body_key, par
 from pointmass.rigid.shapes import Box, Sphere
 
 DT = 1 / 60
-#: Both body stages (``World(body_step=...)``): the particle rows are the same in each.
-STAGES = ("impulses", "soft")
 
 
-def _grounded(stage="impulses"):
-    world = pm.World(gravity=(0.0, -9.81, 0.0), body_step=stage)
+def _grounded():
+    world = pm.World(gravity=(0.0, -9.81, 0.0))
     world.add(pm.Ground(0.0, restitution=0.0, friction=0.5))
     return world
 
 
-@pytest.mark.parametrize("stage", STAGES)
-def test_particle_dropped_on_a_box_rests_on_its_top_face_within_a_millimetre_for_5_s(stage):
-    world = _grounded(stage)
+def test_particle_dropped_on_a_box_rests_on_its_top_face_within_a_millimetre_for_5_s():
+    world = _grounded()
     box = world.add_body(Box((0.5, 0.5, 0.5)), (0.0, 0.5, 0.0), mass=10.0)
     p = world.add_particle((0.1, 2.0, 0.05), radius=0.1, mass=1.0)
     for _ in range(60):  # lands after 0.4 s
@@ -39,16 +36,15 @@ def test_particle_dropped_on_a_box_rests_on_its_top_face_within_a_millimetre_for
     assert np.linalg.norm(box.position - (0.0, 0.5, 0.0)) < 1e-3
 
 
-def _free_world(e, stage="impulses"):
-    world = pm.World(gravity=(0.0, 0.0, 0.0), body_step=stage)
+def _free_world(e):
+    world = pm.World(gravity=(0.0, 0.0, 0.0))
     world.particle_friction = 0.0
     world.particle_restitution = e
     return world
 
 
-@pytest.mark.parametrize("stage", STAGES)
-def test_head_on_hit_conserves_momentum_and_exchanges_velocities_at_e_1(stage):
-    world = _free_world(1.0, stage)
+def test_head_on_hit_conserves_momentum_and_exchanges_velocities_at_e_1():
+    world = _free_world(1.0)
     box = world.add_body(Box((0.5, 0.5, 0.5)), (0.0, 0.0, 0.0), mass=1.0, friction=0.0,
                          restitution=1.0)
     p = world.add_particle((-2.0, 0.0, 0.0), (3.0, 0.0, 0.0), radius=0.1, mass=1.0)
@@ -70,13 +66,12 @@ def _angular_momentum(world, p, box, mp, mb):
 
 
 @pytest.mark.parametrize(("e", "tolerance"), [(1.0, 1e-9), (0.5, 1e-9), (0.0, 5e-4)])
-@pytest.mark.parametrize("stage", STAGES)
-def test_off_centre_hit_spins_the_box_and_conserves_angular_momentum(e, tolerance, stage):
+def test_off_centre_hit_spins_the_box_and_conserves_angular_momentum(e, tolerance):
     """With e > 0 the two part after one impulse through the particle's centre: L to 1e-9.
     With e = 0 the particle slides on the turning face for the rest of the run and the
     position projection (positions only, along n) moves L: 1.1e-4 of |L| = 0.95 after 1 s
     (measured)."""
-    world = _free_world(e, stage)
+    world = _free_world(e)
     box = world.add_body(Box((0.5, 0.5, 0.5)), (0.0, 0.0, 0.0), mass=2.0, friction=0.0)
     p = world.add_particle((-2.0, 0.3, 0.1), (3.0, 0.0, 0.0), radius=0.1, mass=1.0)
     before = _angular_momentum(world, p, box, 1.0, 2.0)
@@ -89,9 +84,8 @@ def test_off_centre_hit_spins_the_box_and_conserves_angular_momentum(e, toleranc
     assert box.angular_velocity[2] < 0.0
 
 
-@pytest.mark.parametrize("stage", STAGES)
-def test_particle_bounces_off_a_sphere_body_along_the_line_of_centres(stage):
-    world = _free_world(1.0, stage)
+def test_particle_bounces_off_a_sphere_body_along_the_line_of_centres():
+    world = _free_world(1.0)
     ball = world.add_body(Sphere(0.5), (0.0, 0.0, 0.0), mass=1.0, friction=0.0, restitution=1.0)
     p = world.add_particle((-2.0, 0.0, 0.0), (2.0, 0.0, 0.0), radius=0.25, mass=1.0)
     for _ in range(90):
@@ -100,9 +94,8 @@ def test_particle_bounces_off_a_sphere_body_along_the_line_of_centres(stage):
     assert np.abs(ball.velocity - (2.0, 0.0, 0.0)).max() < 1e-9
 
 
-@pytest.mark.parametrize("stage", STAGES)
-def test_pile_of_fifty_particles_stays_on_a_box(stage):
-    world = _grounded(stage)
+def test_pile_of_fifty_particles_stays_on_a_box():
+    world = _grounded()
     world.add(pm.SphereCollisions(restitution=0.0, friction=0.5))
     box = world.add_body(Box((1.0, 0.25, 1.0)), (0.0, 0.25, 0.0), mass=50.0)
     rng = np.random.default_rng(1)
@@ -119,8 +112,8 @@ def test_pile_of_fifty_particles_stays_on_a_box(stage):
     assert np.linalg.norm(box.position - (0.0, 0.25, 0.0)) < 2e-3
 
 
-def _scene(stage):
-    world = _grounded(stage)
+def _scene():
+    world = _grounded()
     world.add(pm.SphereCollisions(restitution=0.2, friction=0.3))
     world.add_body(Box((0.5, 0.2, 0.4)), (0.0, 0.2, 0.0), (0.96, 0.0, 0.28, 0.0), mass=5.0)
     world.add_body(Sphere(0.3), (1.2, 0.3, 0.0), mass=2.0)
@@ -131,11 +124,10 @@ def _scene(stage):
     return world
 
 
-@pytest.mark.parametrize("stage", STAGES)
-def test_reruns_are_bit_identical(stage):
+def test_reruns_are_bit_identical():
     runs = []
     for _ in range(2):
-        world = _scene(stage)
+        world = _scene()
         for _ in range(120):
             world.step(DT)
         runs.append((world.particles.position.copy(), world.particles.velocity.copy(),
@@ -144,11 +136,10 @@ def test_reruns_are_bit_identical(stage):
         assert np.array_equal(a, b)
 
 
-@pytest.mark.parametrize("stage", STAGES)
-def test_bodies_move_as_alone_while_no_particle_touches_them(stage):
-    alone = _grounded(stage)
+def test_bodies_move_as_alone_while_no_particle_touches_them():
+    alone = _grounded()
     alone.add_body(Box((0.5, 0.5, 0.5)), (0.0, 1.0, 0.0), (0.9, 0.1, 0.3, 0.2), mass=1.0)
-    near = _grounded(stage)
+    near = _grounded()
     near.add_body(Box((0.5, 0.5, 0.5)), (0.0, 1.0, 0.0), (0.9, 0.1, 0.3, 0.2), mass=1.0)
     near.add_particle((5.0, 0.1, 0.0), radius=0.1)
     for _ in range(120):
@@ -158,9 +149,8 @@ def test_bodies_move_as_alone_while_no_particle_touches_them(stage):
         assert np.array_equal(getattr(alone.bodies, name), getattr(near.bodies, name)), name
 
 
-@pytest.mark.parametrize("stage", STAGES)
-def test_points_without_radius_pass_through_bodies(stage):
-    world = _free_world(0.0, stage)
+def test_points_without_radius_pass_through_bodies():
+    world = _free_world(0.0)
     world.add_body(Box((0.5, 0.5, 0.5)), (0.0, 0.0, 0.0), mass=1.0)
     p = world.add_particle((-2.0, 0.0, 0.0), (3.0, 0.0, 0.0))
     for _ in range(120):

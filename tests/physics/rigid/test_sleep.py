@@ -93,14 +93,13 @@ def test_sleeping_bodies_are_neither_integrated_nor_solved():
     assert all(not b.velocity.any() for b in boxes)
 
 
-@pytest.mark.parametrize("stage", ["impulses", "soft"])
-def test_a_stack_sleeps_as_one_island_never_the_bottom_alone(stage):
+def test_a_stack_sleeps_as_one_island_never_the_bottom_alone():
     """R6 in the island form: the bottom boxes are still for seconds while the top slides on
     them (frictionless), so per-body sleep (Cyclone's) would have put them to sleep; as one
     island none sleeps until all are still.
 
-    The frictionless slide keeps its velocity but for the tilt of the face it slides on.
-    "impulses" solves rigid contacts (1e-6 m/s). "soft" rests on springs (``body_soft``: rows
+    The frictionless slide keeps its velocity but for the tilt of the face it slides on. The
+    soft step rests on springs (``body_soft``: rows
     of ω = 2π·240 Hz at h = dt/4, 480 Hz against the ground, each of stiffness m_n·ω²; a unit
     box's corner row has m_n = 1/8 kg on a box, 1/4 on the ground): a face of four corners
     0.5 m off its centre resists a turn with 4·m_n·ω²·0.5², so the top's weight moved x = 0.4 m
@@ -109,7 +108,7 @@ def test_a_stack_sleeps_as_one_island_never_the_bottom_alone(stage):
     The slide's velocity then moves by at most about
     g·θ·t (θ at its largest all along: 3.0e-4 m/s in 2 s; measured 1.5e-4 m/s).
     """
-    world = _world(body_step=stage)
+    world = _world()
     boxes = _stack(world, 3)
     top = boxes[2]
     world.bodies.friction[top.index] = 0.0
@@ -119,14 +118,11 @@ def test_a_stack_sleeps_as_one_island_never_the_bottom_alone(stage):
         world.step(DT)
         assert world.bodies.awake.all()
     assert world.bodies.sleep_time[0] > 1.0  # the bottom alone has long been still
-    if stage == "impulses":
-        bound = 1e-6
-    else:
-        h = DT / DEFAULTS.soft_substeps
-        omega = 2.0 * math.pi * min(DEFAULTS.contact_hertz, DEFAULTS.contact_hertz_cap / h)
-        g = 9.81
-        tilt = g * 0.2 * seconds * (8.0 + 1.0) / omega**2  # the slide's end, x = 0.4 m
-        bound = g * tilt * seconds
+    h = DT / DEFAULTS.soft_substeps
+    omega = 2.0 * math.pi * min(DEFAULTS.contact_hertz, DEFAULTS.contact_hertz_cap / h)
+    g = 9.81
+    tilt = g * 0.2 * seconds * (8.0 + 1.0) / omega**2  # the slide's end, x = 0.4 m
+    bound = g * tilt * seconds
     assert np.linalg.norm(top.velocity - (0.2, 0.0, 0.0)) < bound
 
 
@@ -237,7 +233,7 @@ def test_a_particle_hitting_a_sleeping_box_wakes_it_one_resting_on_it_does_not()
 
 
 def _pile(world):
-    """4 stacks of 5 boxes: 80 points, over the direct solve's 64, so Gauss–Seidel alone."""
+    """4 stacks of 5 boxes: 80 points."""
     return [b for x in range(4) for b in _stack(world, 5, x=1.5 * x)]
 
 
@@ -263,25 +259,21 @@ def _woken_sag(cold, **kwargs):
     return _largest_move(world, boxes), held, world, steps
 
 
-@pytest.mark.parametrize("stage", ["impulses", "soft"])
-def test_a_woken_pile_starts_from_the_impulses_it_slept_with(stage):
+def test_a_woken_pile_starts_from_the_impulses_it_slept_with():
     """The first step after waking is that of the same pile never put to sleep, its
     velocities zeroed (what sleeping does), to the bit: the warm start kept nothing less.
-    Without it (cold) a box moves further. Measured: 9.7e-5 m warm, 1.8e-4 m cold with
-    "impulses" (the pile sleeps at 0.52 s, still rocking at 1 cm/s, which 30 passes do not
-    remove in a step; per-point friction: 1.4e-5 m warm, 2.3e-4 m cold), 5.1e-7 m warm and
-    1.3e-5 m cold with "soft".
+    Without it (cold) a box moves further. Measured: 5.1e-7 m warm and 1.3e-5 m cold.
 
-    The wake step finds the points the twin finds. With "impulses" those are the 80 points
-    kept; "soft" collides once a step, at the step's start, and its pile still rocks at
+    The wake step finds the points the twin finds. The soft step collides once a step, at the
+    step's start, and its pile still rocks at
     ~1e-6 rad with a period of two steps when it falls asleep: the incident corners that lie
     on a reference face's edge (equal boxes stacked exactly) are clipped on one side or the
     other of it, so the four points of 4 of the 16 box–box faces change their ids every step
     (measured: 16 keys, until about step 50 without sleep), and 64 of the 80 are found again."""
-    warm, held, world, steps = _woken_sag(cold=False, body_step=stage)
-    cold, _, _, _ = _woken_sag(cold=True, body_step=stage)
+    warm, held, world, steps = _woken_sag(cold=False)
+    cold, _, _, _ = _woken_sag(cold=True)
     assert len(held) == 80
-    twin = _world(sleep=False, body_step=stage)
+    twin = _world(sleep=False)
     boxes = _pile(twin)
     for _ in range(steps):
         twin.step(DT)
@@ -290,7 +282,7 @@ def test_a_woken_pile_starts_from_the_impulses_it_slept_with(stage):
     assert warm == _largest_move(twin, boxes)
     assert np.array_equal(world.body_impulses.keys, twin.body_impulses.keys)
     found = np.isin(held, world.body_impulses.keys).sum()
-    assert found >= (80 if stage == "impulses" else 64)  # the same points, found again
+    assert found >= 64  # the same points, found again
     assert cold > 1.5 * warm
 
 

@@ -21,7 +21,7 @@ def _scene(settings: pm.SolverSettings):
     """Boxes and spheres tumbling onto the ground and each other, bouncy and rough, with
     particles landing on them (the packed view): every stage of the step acts."""
     rng = np.random.default_rng(7)
-    world = pm.World(body_step="soft", sleep=False, settings=settings)
+    world = pm.World(sleep=False, settings=settings)
     world.add(pm.Ground(restitution=0.3))
     for k in range(6):
         shape = pm.Box((0.3, 0.2, 0.25)) if k % 2 else pm.Sphere(0.2)

@@ -35,7 +35,7 @@ DT = 1.0 / 60.0
 def _world(shape, at, velocity=(0.0, 0.0, 0.0), spin=(0.0, 0.0, 0.0),
            orientation=(1.0, 0.0, 0.0, 0.0)):
     """A 0.1 m body at ``at`` by a ground plane y = 0, no gravity, the soft step."""
-    world = pm.World(gravity=(0.0, 0.0, 0.0), body_step="soft")
+    world = pm.World(gravity=(0.0, 0.0, 0.0))
     ground = pm.Ground(0.0)
     world.add(ground)
     body = world.add_body(shape, at, orientation, mass=1.0, velocity=velocity,
@@ -117,7 +117,7 @@ def test_a_body_sliding_fast_on_the_ground_is_left_alone(shape):
 
 def test_a_fast_box_stops_at_a_static_box_wall_it_would_pass():
     # a 0.1 m box at 500 m/s (8.3 m a step) through a 5 cm static wall centred at x = 0
-    world = pm.World(gravity=(0.0, 0.0, 0.0), body_step="soft")
+    world = pm.World(gravity=(0.0, 0.0, 0.0))
     world.add_body(Box((0.025, 1.0, 1.0)), (0.0, 0.0, 0.0), mass=math.inf)
     turned = quat_from_axis_angle(np.array([0.0, 1.0, 0.0]), 0.4)
     body = world.add_body(Box((0.05, 0.05, 0.05)), (-1.0, 0.0, 0.0), turned, mass=1.0,
@@ -136,7 +136,7 @@ def test_a_fast_box_stops_at_a_static_box_wall_it_would_pass():
 def _fast_boxes():
     """0.1 m boxes at ±60 m/s (12 of their half-extents a step), off centre, one spinning, no
     gravity, e 0, μ 0.5 (issue 26 point 8 with fast bodies)."""
-    world = pm.World(gravity=(0.0, 0.0, 0.0), body_step="soft")
+    world = pm.World(gravity=(0.0, 0.0, 0.0))
     world.add_body(Box((0.05, 0.05, 0.05)), (-1.0, 0.02, 0.0), mass=1.0,
                    velocity=(60.0, 0.0, 0.0))
     world.add_body(Box((0.05, 0.05, 0.05)), (1.0, -0.02, 0.01), mass=2.0,
@@ -189,7 +189,7 @@ def _moving_pair(end_b):
     """Two 0.1 m boxes, no gravity: A from x = −0.5 at 60 m/s (1 m a step), B from 0.5 at
     −3 m/s, put where a step that let A through its rows would leave them (A at 0.5, B at
     ``end_b``)."""
-    world = pm.World(gravity=(0.0, 0.0, 0.0), body_step="soft")
+    world = pm.World(gravity=(0.0, 0.0, 0.0))
     world.add_body(Box((0.05, 0.05, 0.05)), (-0.5, 0.0, 0.0), mass=1.0,
                    velocity=(60.0, 0.0, 0.0))
     world.add_body(Box((0.05, 0.05, 0.05)), (0.5, 0.0, 0.0), mass=2.0,
@@ -247,7 +247,7 @@ def test_the_random_scene_of_a_small_sphere_sliding_round_a_large_one_stays_out(
     The step's row keeps the normal of its start, a tangent plane the small sphere slides
     along, 0.17 m a step, into the curved surface (≈ L²/2R = 1.7 cm a step): before the
     stage swept moving pairs it ended step 20 4.1 cm inside, 3.8 cm after step 21."""
-    o = fuzz.run(140, 40, body_step="soft")
+    o = fuzz.run(140, 40)
     assert o.refused is None
     assert o.deepest < fuzz.DEEP, f"{o.deepest:.4f} m inside at step {o.deep}"
 
@@ -261,7 +261,7 @@ def _joint_free(first: int, last: int) -> list[int]:
 def _deep(seeds: list[int], steps: int) -> list[int]:
     deep = []
     for seed in seeds:
-        o = fuzz.run(seed, steps, body_step="soft")
+        o = fuzz.run(seed, steps)
         assert o.refused is None, f"seed {seed}: {o.refused}"
         if o.deep is not None:
             deep.append(seed)
@@ -306,7 +306,7 @@ def test_bodies_held_by_a_joint_go_back_together():
     # lower than the other: only the lower one reaches the ground this step; both go back to
     # its time of impact, so the joint is where it was (moved back alone, the lower box left
     # its neighbour 0.55 m out of place: the ragdoll demo's bones opened 14–46 mm)
-    world = pm.World(gravity=(0.0, 0.0, 0.0), body_step="soft")
+    world = pm.World(gravity=(0.0, 0.0, 0.0))
     ground = pm.Ground(0.0)
     world.add(ground)
     low = world.add_body(Box((0.05, 0.05, 0.05)), (0.0, 0.5, 0.0), mass=1.0,
@@ -341,7 +341,7 @@ def test_a_body_the_rows_stop_at_a_wall_is_left_touching_it(shape):
     back to its time of impact, ``SLOP`` short of the face, where it stayed (at rest, 5 mm in
     the air: −0.105 m). A body the rows held at the surface is left there
     (``body_continuous._held``)."""
-    world = pm.World(gravity=(0.0, 0.0, 0.0), body_step="soft")
+    world = pm.World(gravity=(0.0, 0.0, 0.0))
     world.add_body(Box((0.05, 2.0, 2.0)), mass=math.inf)
     body = world.add_body(shape, (-3.0, 0.0, 0.0), velocity=(300.0, 0.0, 0.0), mass=0.1)
     for _ in range(60):
@@ -355,7 +355,7 @@ def _subscene(seed: int, keep: list[int]) -> pm.World:
     planes, gravity and the joints among them, with the soft step."""
     full, _ = fuzz.build(seed)
     b = full.bodies
-    world = pm.World(gravity=tuple(full.gravity.tolist()), body_step="soft")
+    world = pm.World(gravity=tuple(full.gravity.tolist()))
     for g in full.contact_generators:
         if isinstance(g, pm.Plane):
             world.add(pm.Plane(g.normal, g.offset, friction=g.friction,
@@ -422,7 +422,7 @@ def test_a_pair_rewound_into_the_ground_goes_back_along_its_sweeps_instead():
     down, 10.5 cm into the ground (fuzz seed 278: a 74 kg box under a 1630 kg sphere, left
     2.7 cm in the ground); so both go back along their own sweeps to where they are ``SLOP``
     apart, each on a pose it passed through, above the ground."""
-    world = pm.World(gravity=(0.0, 0.0, 0.0), body_step="soft")
+    world = pm.World(gravity=(0.0, 0.0, 0.0))
     ground = pm.Ground(0.0)
     world.add(ground)
     world.add_body(Sphere(0.1), (0.0, 0.15, 0.0), mass=1.0, velocity=(0.0, 20.0, 0.0))

@@ -1,4 +1,4 @@
-"""The soft step (``World(body_step="soft")``, ``solver/body_soft.py``) under issue 30's random
+"""The soft step (``World()``'s body stage, ``solver/body_soft.py``) under issue 30's random
 scenes and issue 26's drops: how many force-free scenes gain kinetic energy in a step and how
 many end a step with a deep overlap (ratchets at the measured counts; issue 30's targets are 0
 and 1 %), and that a bounce returns e² of the height it fell from.
@@ -6,7 +6,7 @@ and 1 %), and that a bounce returns e² of the height it fell from.
 The random scenes are benchmarks/rigid_fuzz.py's (boxes and spheres of 0.05–2 m and
 1 g–10 t at up to 50 m/s, spins to 20 rad/s, friction and restitution in [0, 1], static
 bodies, particles, walls), those without joints (joints: ``joint_soft``'s docstring). A
-failure names its seed: ``rigid_fuzz.run(seed, body_step="soft")`` replays it.
+failure names its seed: ``rigid_fuzz.run(seed)`` replays it.
 """
 
 from __future__ import annotations
@@ -22,7 +22,6 @@ from pointmass.rigid.shapes import Box, Sphere
 sys.path.insert(0, str(Path(__file__).resolve().parents[3] / "benchmarks"))
 import rigid_fuzz as fuzz
 
-SOFT = {"body_step": "soft"}
 G = 9.81
 DT = 1.0 / 60.0
 
@@ -42,7 +41,7 @@ def _scenes(count: int, force_free: bool | None = None, first: int = 0) -> list[
 
 @pytest.fixture(scope="module", autouse=True)
 def _compiled():
-    fuzz.run(_scenes(1, force_free=True)[0], steps=2, **SOFT)  # compile before anything times
+    fuzz.run(_scenes(1, force_free=True)[0], steps=2)  # compile before anything times
 
 
 def _gaining(seeds: list[int], steps: int) -> dict[int, float]:
@@ -50,7 +49,7 @@ def _gaining(seeds: list[int], steps: int) -> dict[int, float]:
     gain of a step."""
     gaining = {}
     for seed in seeds:
-        o = fuzz.run(seed, steps, **SOFT)
+        o = fuzz.run(seed, steps)
         assert o.force_free
         assert o.refused is None, f"seed {seed}: {o.refused}"
         assert o.explosion is None, f"seed {seed}: {o.speed:.3g} m/s at step {o.explosion}"
@@ -83,7 +82,7 @@ def test_friction_warm_started_on_separating_points_gives_no_energy():
     # included. The soft solve lets the normals go; the friction used to ride through the
     # drift and be taken off by the relax in the next pose: +2.9 % in that step. Clamped to
     # the solve's cone in the pose it was given in, no step of the scene gains.
-    o = fuzz.run(38, 40, **SOFT)
+    o = fuzz.run(38, 40)
     assert o.force_free and o.refused is None
     assert o.gain is None, f"step {o.gain} gained {o.worst_gain:.3g}"
 
@@ -93,7 +92,7 @@ def test_body_on_scenery_gains_no_energy_from_its_turning_inertia():
     # soft solve's push-out, held through the drift, turned it and its inertia, and the relax
     # took the push back at I⁻¹ of the new pose: +6.3e-4 of the kinetic energy in the step
     # (``soft_energy.limit_scenery``). Now no step of the 300 gains.
-    o = fuzz.run(297, fuzz.STEPS, **SOFT)
+    o = fuzz.run(297, fuzz.STEPS)
     assert o.force_free and o.refused is None
     assert o.gain is None, f"step {o.gain} gained {o.worst_gain:.3g}"
 
@@ -201,7 +200,7 @@ def test_a_pair_parted_by_the_continuous_stage_then_gains_no_energy_in_its_conta
     # 4.2e-7 in the soft solve of two boxes' contact, an island no joint holds, which
     # ``limit_islands`` did not cap; now it caps every island that rows link (measured
     # 3.3e-15 at worst over 300 steps)
-    o = fuzz.run(380, 40, **SOFT)
+    o = fuzz.run(380, 40)
     assert o.force_free and o.joints == 0 and o.refused is None
     assert o.gain is None, f"step {o.gain} gained {o.worst_gain:.3g}"
 
@@ -218,7 +217,7 @@ def test_overlaps_of_random_scenes_stay_bounded():
     seeds = _scenes(40)
     deep = []
     for seed in seeds:
-        o = fuzz.run(seed, 60, **SOFT)
+        o = fuzz.run(seed, 60)
         assert o.refused is None, f"seed {seed}: {o.refused}"
         assert o.deepest < 1.0, f"seed {seed}: {o.deepest:.3g} m inside"
         if o.deep is not None:
@@ -275,7 +274,7 @@ def test_soft_step_bounce_returns_e_squared_of_its_height(shape, height):
     # error taken out) is within 3 % (measured: box 0.2481–0.2565, sphere
     # 0.2496–0.2497); the apex itself, with the flight, within 4 % (measured
     # 0.2416–0.2499·h): a ratchet, the 2.7 % of the flight being the integrator's.
-    apex, contact = drop(shape, height, **SOFT)
+    apex, contact = drop(shape, height)
     assert contact == pytest.approx(0.25, rel=0.03)
     assert apex == pytest.approx(0.25, rel=0.04)
 
@@ -290,7 +289,7 @@ def test_friction_cone_takes_back_unsupported_friction_exactly():
     from pointmass.solver import body_soft as bs
     from pointmass.solver import soft_energy
 
-    world = pm.World(gravity=(0.0, 0.0, 0.0), **SOFT)
+    world = pm.World(gravity=(0.0, 0.0, 0.0))
     q = (0.99, 0.1, 0.05, 0.02)
     world.add_body(Box((0.6, 0.2, 0.4)), (0.0, 0.0, 0.0), q, mass=2.0, friction=0.7)
     world.add_body(Box((0.3, 0.25, 0.5)), (0.1, 0.43, 0.05), q, mass=3.0, friction=0.7,
@@ -327,7 +326,7 @@ def test_friction_cone_leaves_friction_inside_it():
     from pointmass.solver import body_soft as bs
     from pointmass.solver import soft_energy
 
-    world = pm.World(gravity=(0.0, -G, 0.0), **SOFT)
+    world = pm.World(gravity=(0.0, -G, 0.0))
     world.add(pm.Ground(friction=0.5))
     world.add_body(Box((0.5, 0.5, 0.5)), (0.0, 0.5, 0.0), mass=1.0, friction=0.5)
     world.step(DT)

@@ -12,11 +12,11 @@ with ``World()`` defaults plus the scene's own materials; dt = 1/60, g = 9.81.
 * point 8: boxes colliding without gravity (e 0 and 0.5, μ 0 and 0.5): linear and angular
   momentum about the origin.
 
-Each scene runs with both body stages, each named: the earlier sequential-impulse stage,
-``World(body_step="impulses")`` (a target it misses is an ``xfail(strict=True)`` with the
-measured value), and the soft step, ``World(body_step="soft")`` (``solver/body_soft.py``; a
-target it misses is a ratchet at its measured value with the issue's target named). The tests
-name the stage rather than lean on ``World()``'s default, so they hold whichever is the default.
+A target the soft step misses is a ratchet at its measured value with the issue's target named.
+The impulses stage that ran before the soft step (removed at stop 44) missed points 1 (its 20-
+and 30-box towers fell within 60 s), 2 (the pyramid's apex drifted 8.0 mm in 10 s; the pit
+still moved at 0.090 m/s), 5 (it bounced off a speculative point above the floor: 0.272–0.310·h)
+and 8 (its position projection turned the boxes: |ΔL|/|L| 3.5e-3 at e 0, μ 0).
 """
 
 from __future__ import annotations
@@ -39,9 +39,6 @@ import bench_rigid  # the benchmark's scenes, built the same way
 G = 9.81
 DT = 1.0 / 60.0
 MU = 0.5
-SOFT = {"body_step": "soft"}
-#: The earlier stage, named: these tests hold its figures whichever stage ``World()`` runs.
-IMPULSES = {"body_step": "impulses"}
 
 
 # --- point 1: towers ---------------------------------------------------------------------------
@@ -58,25 +55,11 @@ def tower(n: int, seconds: float = 60.0, **world) -> tuple[float, float]:
     return math.hypot(top[0], top[2]), float(top[1] - (n - 0.5))
 
 
-_FALLS = pytest.mark.xfail(strict=True, reason="issue 26 point 1: the \"impulses\" stage's "
-                           "20- and 30-box towers fall within 60 s (top box 18 m away, on the "
-                           "floor)")
-
-
-@pytest.mark.parametrize("n", [5, 10, pytest.param(20, marks=_FALLS),
-                               pytest.param(30, marks=_FALLS)])
-def test_tower_stands_60_s_with_sleep_off(n):
-    # measured: 5 and 10 boxes 2e-10 / 7e-10 m sideways, 3e-10 / 1e-9 m down
-    drift, sink = tower(n, **IMPULSES)
-    assert drift < 0.01
-    assert abs(sink) < 0.01
-
-
 @pytest.mark.parametrize("n", [5, 10, pytest.param(20, marks=pytest.mark.slow),
                                pytest.param(30, marks=pytest.mark.slow)])
-def test_soft_step_tower_stands_60_s_with_sleep_off(n):
+def test_tower_stands_60_s_with_sleep_off(n):
     # measured, sideways: 0.06, 0.10, 1.3, 1.1 mm (down: up to 3.8 mm, the stack's sag)
-    drift, sink = tower(n, **SOFT)
+    drift, sink = tower(n)
     assert drift < 0.01
     assert abs(sink) < 0.01
 
@@ -138,35 +121,17 @@ def pit(n: int = 1000, seconds: float = 10.0, seed: int = 0,
 
 
 @pytest.mark.slow
-@pytest.mark.xfail(strict=True, reason="issue 26 point 2: the \"impulses\" stage's apex "
-                   "drifts 8.0 mm in 10 s (max speed 0.39 mm/s meets its bound)")
 def test_pyramid_stands_still_with_sleep_off():
-    drift, speed = pyramid(**IMPULSES)
-    assert drift < 0.005
-    assert speed < 0.01
-
-
-@pytest.mark.slow
-def test_soft_step_pyramid_stands_still_with_sleep_off():
     # measured: apex 0.2 mm, max speed 0.28 mm/s (with the soft rows over-relaxed)
-    drift, speed = pyramid(**SOFT)
+    drift, speed = pyramid()
     assert drift < 0.005
     assert speed < 0.01
 
 
 @pytest.mark.slow
-@pytest.mark.xfail(strict=True, reason="issue 26 point 2: the \"impulses\" stage's pit still moves "
-                   "at 10 s: max speed 0.090 m/s (overlap 0.29 mm meets its bound)")
 def test_box_pit_comes_to_rest_with_sleep_off():
-    speed, overlap = pit(**IMPULSES)
-    assert speed < 0.05
-    assert overlap < 0.005
-
-
-@pytest.mark.slow
-def test_soft_step_box_pit_comes_to_rest_with_sleep_off():
     # measured before the soft rows were over-relaxed: max speed 0.44 mm/s, overlap 0.17 mm
-    speed, overlap = pit(**SOFT)
+    speed, overlap = pit()
     assert speed < 0.05
     assert overlap < 0.005
 
@@ -199,22 +164,13 @@ def drop(shape: str, height: float, e: float = 0.5, **world) -> float:
     return peak / height
 
 
-@pytest.mark.xfail(strict=True, reason="issue 26 point 5: the \"impulses\" stage bounces off a "
-                   "speculative point above the floor: 0.272 / 0.310 / 0.292 / 0.273 / 0.306·h "
-                   "(box and sphere alike, +9..+24 %)")
 @pytest.mark.parametrize("shape", ["box", "sphere"])
 @pytest.mark.parametrize("height", [0.9, 0.95, 1.0, 1.05, 1.1])
 def test_drop_rebounds_to_e_squared_of_its_height(shape, height):
-    assert drop(shape, height, **IMPULSES) == pytest.approx(0.25, rel=0.03)
-
-
-@pytest.mark.parametrize("shape", ["box", "sphere"])
-@pytest.mark.parametrize("height", [0.9, 0.95, 1.0, 1.05, 1.1])
-def test_soft_step_drop_rebounds_to_e_squared_of_its_height(shape, height):
     # measured (leapfrog, stop 42): box and sphere 0.2426 / 0.2430 / 0.2474 / 0.2432 / 0.2435,
     # within the issue's 3 % (before, with semi-implicit Euler's flight losing h·v/2 of height
     # down and up: box 0.2480 / 0.2497 / 0.2416 / 0.2454 / 0.2499, a ratchet at 4 %)
-    assert drop(shape, height, **SOFT) == pytest.approx(0.25, rel=0.03)
+    assert drop(shape, height) == pytest.approx(0.25, rel=0.03)
 
 
 # --- point 8: momentum -------------------------------------------------------------------------
@@ -253,38 +209,25 @@ def collide(e: float, mu: float, steps: int = 240, **world) -> tuple[float, floa
     return worst_p, worst_l
 
 
-_PROJECTED = pytest.mark.xfail(strict=True, reason="issue 26 point 8: the \"impulses\" stage's "
-                               "position projection turns the boxes: |ΔL|/|L| 3.5e-3 (e 0, μ 0)")
-
-
-@pytest.mark.parametrize(("e", "mu"), [pytest.param(0.0, 0.0, marks=_PROJECTED), (0.0, 0.5),
-                                       (0.5, 0.0), (0.5, 0.5)])
-def test_zero_gravity_collision_keeps_momentum(e, mu):
-    # measured: linear ≤ 9e-16; angular 1.7e-14, 1.3e-14, 9.9e-15
-    linear, angular = collide(e, mu, **IMPULSES)
-    assert linear < 1e-9
-    assert angular < 1e-9
-
-
 @pytest.mark.parametrize("e", [0.0, 0.5])
 @pytest.mark.parametrize("mu", [0.0, 0.5])
-def test_soft_step_keeps_momentum_by_construction(e, mu):
+def test_zero_gravity_collision_keeps_momentum_by_construction(e, mu):
     # measured: linear ≤ 4.5e-16, angular ≤ 1.4e-13 (equal and opposite impulses at one point)
-    linear, angular = collide(e, mu, **SOFT)
+    linear, angular = collide(e, mu)
     assert linear < 1e-9
     assert angular < 1e-9
 
 
 # --- joints (``solver/joint_soft.py``) -----------------------------------------------------------
 
-def test_soft_step_holds_a_body_on_two_joints_that_cannot_both_hold():
+def test_holds_a_body_on_two_joints_that_cannot_both_hold():
     """Issue 30's hang under the soft step: a 55 g box held by a ball joint and a hinge to two
     world points 105 cm apart (its joint points 16 cm apart: the joints cannot all hold), hit
     from below by a 2.3 kg box at 16 m/s. Every step returns and the kinetic energy never
     passes what the blow and a 20 m fall could give (the contradiction is soft: the tree
     takes one joint exactly, the other is a soft Gauss–Seidel row whose bias closes a gap at
     3 m/s at most)."""
-    world = pm.World(**SOFT)
+    world = pm.World()
     box = world.add_body(Box((0.1, 0.05, 0.08)), (0.0, 1.0, 0.0), mass=0.055)
     world.add(pm.BallJoint(box, (0.08, 0.0, 0.0), None, (0.5, 1.5, 0.5)))
     world.add(pm.HingeJoint(box, (-0.08, 0.0, 0.0), None, (-0.2, 0.6, 0.4),
@@ -297,11 +240,11 @@ def test_soft_step_holds_a_body_on_two_joints_that_cannot_both_hold():
     assert np.isfinite(world.bodies.position).all()
 
 
-def test_soft_step_hangs_a_chain_of_ten_boxes_still_and_closed():
+def test_hangs_a_chain_of_ten_boxes_still_and_closed():
     """Ten 1 kg boxes jointed end to end from a world anchor (a tree: solved exactly each
     substep): after 10 s every joint is shut to < 0.5 mm and nothing moves faster than
     1 mm/s."""
-    world = pm.World(gravity=(0.0, -G, 0.0), **SOFT)
+    world = pm.World(gravity=(0.0, -G, 0.0))
     above = None
     for k in range(10):
         box = world.add_body(Box((0.05, 0.1, 0.05)), (0.0, -0.1 - 0.2 * k, 0.0), mass=1.0)
@@ -311,13 +254,3 @@ def test_soft_step_hangs_a_chain_of_ten_boxes_still_and_closed():
         world.step(DT)
     assert world.joints.separations().max() < 0.5e-3
     assert np.abs(world.bodies.velocity).max() < 1e-3
-
-
-def test_a_world_names_its_body_stage_and_keeps_it():
-    assert pm.World().body_step == "soft"  # the default (issue 26)
-    assert pm.World(body_step="soft").body_step == "soft"
-    world = pm.World(body_step="impulses")
-    with pytest.raises(AttributeError):
-        world.body_step = "soft"  # read-only: each stage keeps its own warm starts and rows
-    with pytest.raises(ValueError, match="body_step"):
-        pm.World(body_step="sequential")

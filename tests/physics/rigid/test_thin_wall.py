@@ -44,9 +44,6 @@ SIZE = 0.05  # the projectile's half-extent / radius [m]
 ANGLES = (0.0, 15.0, 30.0, 45.0, 60.0)
 SPEEDS = (50.0, 100.0, 200.0, 500.0)
 PHASES = 16
-#: Bound on the deepest overlap with the wall at a step's end [m]: 0.03 mm measured (the
-#: aligned box at 15°, 500 m/s); before the swept contacts (``rigid/sweep.py``), up to 15.8 mm.
-OVERLAP = 1e-3
 #: Distance [m] from the start to the wall's centre along the flight, before the phase offset:
 #: the projectile starts clear of the wall at every angle.
 START = 1.0
@@ -64,16 +61,15 @@ def _orientation(reading: str, theta: float) -> np.ndarray:
 
 
 def shot(shape: str, reading: str, angle_deg: float, speed: float, phase: int,
-         spin: float = 0.0, body_step: str = "impulses",
-         friction: float = 0.5) -> tuple[bool, float]:
+         spin: float = 0.0, friction: float = 0.5) -> tuple[bool, float]:
     """(whether the projectile passes through the wall, its deepest overlap with the wall at a
-    step's end [m]) in this shot (module docstring); ``spin`` [rad/s] about z; ``body_step``:
-    the world's; ``friction``: the projectile's (the wall's is the default 0.5)."""
+    step's end [m]) in this shot (module docstring); ``spin`` [rad/s] about z; ``friction``: the
+    projectile's (the wall's is the default 0.5)."""
     theta = math.radians(angle_deg)
     direction = np.array([math.cos(theta), math.sin(theta), 0.0])
     travel = speed * DT
     distance = START + travel * phase / PHASES
-    world = pm.World(gravity=(0.0, 0.0, 0.0), body_step=body_step)
+    world = pm.World(gravity=(0.0, 0.0, 0.0))
     world.add_body(Box(HALF_WALL), (0.0, 0.0, 0.0), mass=math.inf)
     body = world.add_body(
         Sphere(SIZE) if shape == "sphere" else Box((SIZE, SIZE, SIZE)),
@@ -105,7 +101,7 @@ def shot(shape: str, reading: str, angle_deg: float, speed: float, phase: int,
 def shots(shape: str, reading: str, angle_deg: float, speed: float, spin: float = 0.0,
           **world) -> tuple[int, float]:
     """(how many of the 16 phases pass through, the deepest overlap of any [m]); ``world``:
-    ``shot``'s ``body_step`` and ``friction``."""
+    ``shot``'s ``friction``."""
     got = [shot(shape, reading, angle_deg, speed, k, spin, **world) for k in range(PHASES)]
     return sum(passed for passed, _ in got), max(deep for _, deep in got)
 
@@ -117,16 +113,7 @@ CASES = [("sphere", "aligned", 0.0), ("box", "aligned", 0.0), ("box", "rotated",
          ("box", "tumbled", 0.0), ("box", "tumbled", 45.0)]
 
 
-@pytest.mark.parametrize(("shape", "reading", "spin"), CASES)
-def test_no_shot_passes_through_a_thin_wall(shape, reading, spin):
-    got = {(a, s): shots(shape, reading, a, s, spin) for a in ANGLES for s in SPEEDS}
-    passed = {key: count for key, (count, _) in got.items()}
-    assert passed == dict.fromkeys(passed, 0)
-    # and none sinks into the wall
-    assert max(deep for _, deep in got.values()) < OVERLAP
-
-
-#: The soft step (``World(body_step="soft")``) finds its rows once a step; its continuous
+#: The soft step (``World()``'s body stage) finds its rows once a step; its continuous
 #: stage (``solver/body_continuous.py``) puts a fast body back where its step first comes
 #: within the slop of a static body, and lets a touching one end a step at most the slop
 #: deeper than it began it: the bound on the deepest overlap. Measured: none passes; the
@@ -134,22 +121,22 @@ def test_no_shot_passes_through_a_thin_wall(shape, reading, spin):
 #: 0.14 mm smooth. Before the stage, rough boxes passed in up to 4 of 16 phases (aligned
 #: 15°–30° and rotated 45° at 200–500 m/s, the spinning box at 15°–45°) and sank up to
 #: 106 mm into the wall; smooth ones passed in none but sank up to 37 mm.
-SOFT_OVERLAP = pm.SolverSettings().continuous_slop
+OVERLAP = pm.SolverSettings().continuous_slop
 #: The quick cases (the worst before the stage: 4 of 16 passed); the rest are ``slow``.
-SOFT_QUICK = {("box", "rotated", 0.0, 0.5), ("box", "tumbled", 45.0, 0.5),
+QUICK = {("box", "rotated", 0.0, 0.5), ("box", "tumbled", 45.0, 0.5),
               ("sphere", "aligned", 0.0, 0.5)}
 
 
 @pytest.mark.parametrize(("shape", "reading", "spin", "friction"), [
-    pytest.param(*case, mu, marks=() if (*case, mu) in SOFT_QUICK else pytest.mark.slow,
+    pytest.param(*case, mu, marks=() if (*case, mu) in QUICK else pytest.mark.slow,
                  id=f"{case[0]}-{case[1]}-{case[2]:g}-{'rough' if mu else 'smooth'}")
     for mu in (0.5, 0.0) for case in CASES])
-def test_no_shot_passes_through_a_thin_wall_with_the_soft_step(shape, reading, spin, friction):
-    got = {(a, s): shots(shape, reading, a, s, spin, body_step="soft", friction=friction)
+def test_no_shot_passes_through_a_thin_wall(shape, reading, spin, friction):
+    got = {(a, s): shots(shape, reading, a, s, spin, friction=friction)
            for a in ANGLES for s in SPEEDS}
     passed = {key: count for key, (count, _) in got.items()}
     assert passed == dict.fromkeys(passed, 0)
-    assert max(deep for _, deep in got.values()) < SOFT_OVERLAP
+    assert max(deep for _, deep in got.values()) < OVERLAP
 
 
 @pytest.mark.parametrize("shape", ["box", "sphere"])

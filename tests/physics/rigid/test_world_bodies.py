@@ -8,7 +8,7 @@ import pointmass as pm
 from pointmass.keys import body_pair_key, body_plane_key
 from pointmass.rigid.bodies import Bodies
 from pointmass.rigid.shapes import Box, Sphere
-from pointmass.rigid.step import integrate_positions, integrate_velocities, step
+from pointmass.rigid.step import integrate_positions, integrate_velocities
 
 #: The solver's tuning numbers as World() has them (``pm.SolverSettings``)
 DEFAULTS = pm.SolverSettings()
@@ -23,22 +23,6 @@ def _tumbling_box(world):
     alone.add_box((0.3, 0.5, 0.9), (1.0, 2.0, 3.0), q, velocity=(1.0, 2.0, 0.0),
                   angular_velocity=(0.3, 4.0, 0.2), mass=2.0)
     return body, alone
-
-
-def test_free_bodies_move_exactly_as_the_stepper_moves_them():
-    """A free body in the "impulses" stage moves bit for bit as the stand-alone stepper moves
-    it (semi-implicit Euler over dt: in free fall y(t) = y₀ + v₀t − g·t²/2 − g·t·dt/2)."""
-    world = pm.World(gravity=(0.0, -9.81, 0.0), body_step="impulses")
-    body, alone = _tumbling_box(world)
-    for _ in range(120):
-        body.add_torque((0.0, 0.0, 0.5))
-        stats = world.step(1 / 60)
-        alone.add_torque(0, (0.0, 0.0, 0.5))
-        step(alone, 1 / 60, gravity=(0.0, -9.81, 0.0))
-    assert stats.body_contacts == 0
-    for name in ("position", "orientation", "velocity", "angular_velocity"):
-        assert np.array_equal(getattr(world.bodies, name), getattr(alone, name)), name
-    assert not world.bodies.torque.any()  # accumulators last one step
 
 
 def _leapfrog(b: Bodies, dt: float, kicks: int, torque, g, half) -> None:
