@@ -29,7 +29,7 @@ keep their Baumgarte and speculative targets too: aimed at the end pose, the rag
 rest was left up to 1.0° past a limit (seeds 1–3, 3 s) against 0.57° without.
 
 The soft step stops aiming in a pass that predicts no better than the last
-(``joint_soft.solve``: ``JointRows.predict``): the chord's velocity can be longer than the
+(``body_soft.joint_passes``: ``JointRows.predict``): the chord's velocity can be longer than the
 start's by O((ω·dt)²).
 """
 

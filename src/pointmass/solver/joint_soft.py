@@ -15,7 +15,8 @@
    angle within the substep, no more).
 
 There is no projection after the substeps (Box2D v3 has none): it moved bodies without their
-velocities. What each pass solves is ``joint_solver.velocity_pass``:
+velocities. What each pass solves is ``joint_solver.velocity_pass`` (the passes: one compiled
+call a stage, ``body_soft.joint_passes``):
 
 - the point blocks of a forest of joints (``joint_tree`` DIRECT: chains, ragdolls, pendulums;
   chosen by the graph's structure) exactly, all at once, each joint aimed at closing the gap
@@ -134,7 +135,9 @@ along the old arm instead, the pendulum loses that energy every substep.
 
 from __future__ import annotations
 
-from dataclasses import dataclass, replace
+import copy
+import math
+from dataclasses import dataclass
 
 import numpy as np
 from numba import njit
@@ -189,25 +192,45 @@ def prepare(view, joints, h: float, settings: SolverSettings = _DEFAULTS) -> Sof
                                 geometric=GEOMETRIC, pairs=False, rows_through=True)
     rows.mass_scale = mass_scale
     rows.impulse_scale = impulse_scale
-    # the loops: rigid rows through the tree, aimed at closing their gap within the substep
-    # (Ċ = −C/h, as the angular rows below; module docstring, "Loops")
     rows.aim_loops = False
-    rows.bias[rows.mode == LOOP_JOINT] /= rate * h
-    # a gap is closed at the contacts' push-out speed at most (Box2D's ``contactSpeed``)
     speed = settings.contact_speed
-    size = np.sqrt((rows.bias * rows.bias).sum(axis=1))
-    rows.bias *= np.minimum(1.0, speed / np.maximum(size, 1e-300))[:, None]
-    rows.speed = speed  # ... and so is the aim at the end pose
-    # the angular rows of the tree's joints: rigid through the tree, aimed at closing their
-    # angle within the substep (module docstring, "Angular rows")
-    shut = rows.through & ~((rows.row == LIMIT) & (rows.target <= 0.0))
-    rows.target[shut] /= rate * h
-    # relax: no bias; a limit still open keeps its speculative target (≤ 0), a violated one
-    # (target > 0) and every equality row aim at Ċ = 0
-    target = np.where((rows.row == LIMIT) & (rows.target < 0.0), rows.target, 0.0)
-    relax = replace(rows, bias=np.zeros_like(rows.bias), target=target, mass_scale=1.0,
-                    impulse_scale=0.0, predict=False)
+    rows.speed = speed  # a gap is closed at the push-out speed at most, and so is the aim
+    relax = copy.copy(rows)  # (sharing the arms, masses, the tree and the accumulators)
+    relax.target = np.empty_like(rows.target)
+    _soften(rows.mode, rows.row, rows.through, rows.bias, rows.target, relax.target, rate * h,
+            speed)
+    relax.bias = np.zeros_like(rows.bias)
+    relax.mass_scale, relax.impulse_scale, relax.predict = 1.0, 0.0, False
     return SoftJointRows(rows, relax, rows.bias.copy())
+
+
+@njit(cache=True, nogil=True)
+def _soften(mode, row, through, bias, target, relax_target, rate_h, speed):
+    """The soft rows' targets from the Baumgarte ones ``joint_solver.prepare`` set with
+    β = ``rate_h`` (the bias rate × h), in place, and the relax pass's into ``relax_target``:
+
+    - the loops: rigid rows through the tree, aimed at closing their gap within the substep
+      (Ċ = −C/h, as the angular rows below; module docstring, "Loops");
+    - a gap is closed at the contacts' push-out speed ``speed`` at most (Box2D's
+      ``contactSpeed``);
+    - the angular rows of the tree's joints: rigid through the tree, aimed at closing their
+      angle within the substep (module docstring, "Angular rows");
+    - relax: no bias; a limit still open keeps its speculative target (≤ 0), a violated one
+      (target > 0) and every equality row aim at Ċ = 0."""
+    for j in range(bias.shape[0]):
+        if mode[j] == LOOP_JOINT:
+            for k in range(3):
+                bias[j, k] /= rate_h
+        size = math.sqrt(bias[j, 0] * bias[j, 0] + bias[j, 1] * bias[j, 1]
+                         + bias[j, 2] * bias[j, 2])
+        scale = min(1.0, speed / max(size, 1e-300))
+        for k in range(3):
+            bias[j, k] *= scale
+        for s in range(3):
+            limit = row[j, s] == LIMIT
+            if through[j, s] and not (limit and target[j, s] <= 0.0):
+                target[j, s] /= rate_h
+            relax_target[j, s] = target[j, s] if limit and target[j, s] < 0.0 else 0.0
 
 
 def warm_start(view, joints, rows: SoftJointRows) -> float:
@@ -323,33 +346,3 @@ def _recall(turn, axis, row, mode, lam):
                 if row[j, s] == LIMIT and x < 0.0:
                     x = 0.0
             lam[j, s] = x
-
-
-def solve(view, joints, rows: SoftJointRows, relax: bool, contact_pass=None,
-          settings: SolverSettings = _DEFAULTS) -> int:
-    """Joint passes of the solve (``relax`` False) or the relax stage, each followed by one
-    ``contact_pass()`` of the same stage if given, until no joint row changes a velocity by
-    more than ``settings.joint_tolerance`` (at most ``settings.joint_passes``); then the
-    angular impulses are kept (``joints.turn``) for the relax pass and the next substep's warm
-    start. Returns the passes run.
-
-    The solve's aim at the end pose is Newton's method (``joint_predict``): where a pass
-    leaves more to do than the one before (it diverges: a lever arm turning through a large
-    angle in a substep, joints that contradict each other), the rest of the substep keeps
-    the bias targets."""
-    r = rows.relax if relax else rows.solve
-    passes = 0
-    last = np.inf
-    while passes < settings.joint_passes:
-        passes += 1
-        change = joint_solver.velocity_pass(view, joints, r)
-        if change <= settings.joint_tolerance:
-            break
-        if r.predict and change >= last:
-            r.predict = False
-            r.bias[:] = rows.bias
-        last = change
-        if contact_pass is not None:
-            contact_pass()
-    joint_solver.keep(joints, r)
-    return passes

@@ -10,6 +10,7 @@ import math
 from dataclasses import dataclass
 
 import numpy as np
+from numba import njit
 
 from ..rigid.joint_rows import LIMIT
 from . import joint_direct as jd
@@ -95,64 +96,96 @@ def prepare(bodies, joints, dt: float, beta: float = BETA, loops: bool = True,
     rows = JointRows(np.empty((n, 3)), np.empty((n, 3)), np.empty((n, 3, 3)), np.empty((n, 3)),
                      np.empty((n, 3, 3)), np.empty((n, 3)), np.empty((n, 3)),
                      np.empty((n, 3), np.int64), np.zeros((n, 3)), np.empty(n, np.int64), (),
-                     dt, through=np.zeros((n, 3), np.bool_))
+                     dt, through=np.zeros((n, 3), np.bool_), keep=np.empty((n, 3)))
     b = bodies
     awake = getattr(b, "awake", None)
-    movable = b.inv_mass > 0.0
-    jt.choose(j.a, j.b, movable if awake is None else awake, movable, rows.mode)
-    if not DIRECT:
-        rows.mode[rows.mode >= jt.DIRECT] = jt.ITERATIVE
-    if not loops:
-        rows.mode[rows.mode == jt.LOOP] = jt.ITERATIVE
-    elif not pairs:
-        jt.unpair(j.a, j.b, movable, rows.mode)
-    js.prepare(j.a, j.b, j.local_a, j.frame_a, j.frame_b, j.kind, j.limits, j.local_b,
-               b.inv_mass, b.inv_inertia_world, b.position, b.orientation, dt,
-               beta, rows.ra, rows.rb, rows.kmat, rows.bias,
-               rows.axis, rows.mass, rows.target, rows.row)
-    rows.tree = _factor(b, j, rows, movable, joints.point, dt,
-                        GEOMETRIC if geometric is None else geometric)
-    if rows_through and rows.tree:
-        nodes, parent, count, dinv, low, _, where, _ = rows.tree
-        jl.row_masses(nodes, parent, count, b.inv_mass.shape[0], where, j.a, j.b, rows.mode,
-                      jt.DIRECT, rows.axis, rows.row, dinv, low, rows.mass, rows.through)
-    # the errors now, from the Baumgarte targets js.prepare set (−β·C/dt)
-    rows.keep = rows.bias * (-(1.0 - beta) * dt / beta) if beta > 0.0 else rows.bias * 0.0
+    if awake is None:
+        awake = b.inv_mass > 0.0
+    tree = prepare_kernel(
+        j.a, j.b, j.local_a, j.frame_a, j.frame_b, j.kind, j.limits, j.local_b, b.inv_mass,
+        b.inv_inertia_world, b.position, b.orientation, awake, joints.point, dt, beta, DIRECT,
+        loops, pairs, GEOMETRIC if geometric is None else geometric, rows_through, rows.ra,
+        rows.rb, rows.kmat, rows.bias, rows.axis, rows.mass, rows.target, rows.row, rows.mode,
+        rows.through, rows.keep)
+    rows.tree = tree[1:] if tree[0] else ()
     return rows
 
 
-def _factor(b, j, rows: JointRows, movable: np.ndarray, point: np.ndarray, dt: float,
-            geometric: bool) -> tuple:
+@njit(cache=True, nogil=True)
+def prepare_kernel(ja, jb, la, fa, fb, kind, lim, lb, inv_mass, inv_i, pos, quat, awake, point,
+                   dt, beta, direct, loops, pairs, geometric, rows_through, ra, rb, kmat, bias,
+                   axis, mass, target, row, mode, through, keep):
+    """``prepare`` in one compiled call (the arguments: ``prepare``'s, and the rows' arrays it
+    fills; ``direct``: ``DIRECT``): the joints' modes (``joint_tree``), their rows
+    (``joint_stages.prepare``), the forest's order and factors (``_factor``) and the rows
+    through it, and ``keep``. Returns (whether there is a forest, then its order, factors and
+    loops as ``JointRows.tree`` holds them; placeholders without one)."""
+    movable = inv_mass > 0.0
+    jt.choose(ja, jb, awake, movable, mode)
+    if not direct:
+        for k in range(mode.shape[0]):
+            if mode[k] >= jt.DIRECT:
+                mode[k] = jt.ITERATIVE
+    if not loops:
+        for k in range(mode.shape[0]):
+            if mode[k] == jt.LOOP:
+                mode[k] = jt.ITERATIVE
+    elif not pairs:
+        jt.unpair(ja, jb, movable, mode)
+    js.prepare(ja, jb, la, fa, fb, kind, lim, lb, inv_mass, inv_i, pos, quat, dt, beta, ra, rb,
+               kmat, bias, axis, mass, target, row)
+    tree, nodes, parent, count, dinv, low, cycles, where, sinv = _factor(
+        ja, jb, movable, mode, ra, rb, point, inv_mass, inv_i, dt, geometric)
+    if rows_through and tree:
+        jl.row_masses(nodes, parent, count, inv_mass.shape[0], where, ja, jb, mode, jt.DIRECT,
+                      axis, row, dinv, low, mass, through)
+    # the errors now, from the Baumgarte targets js.prepare set (−β·C/dt)
+    scale = -(1.0 - beta) * dt / beta if beta > 0.0 else 0.0
+    for k in range(bias.shape[0]):
+        for i in range(3):
+            keep[k, i] = bias[k, i] * scale
+    return tree, nodes, parent, count, dinv, low, cycles, where, sinv
+
+
+@njit(cache=True, nogil=True)
+def _factor(ja, jb, movable, mode, ra, rb, point, inv_mass, inv_i, dt, geometric):
     """Order and factor the DIRECT forest (``joint_direct``) and the LOOP joints' masses
     (``joint_loops``); a singular pivot (a body without full inertia, repeated joints) sends
-    the joints back to the Gauss–Seidel rows (all of them, or the loops only)."""
-    if not (rows.mode == jt.DIRECT).any():
-        return ()
-    size = b.inv_mass.shape[0] + j.a.shape[0]
+    the joints back to the Gauss–Seidel rows (all of them, or the loops only). Returns
+    (whether there is a forest, its order, parents, node count, factors, loops, each body's
+    node position and the loops' S⁻¹)."""
+    n = inv_mass.shape[0]
+    none = (False, np.empty(0, np.int64), np.empty(0, np.int64), 0, np.zeros((0, 6, 6)),
+            np.zeros((0, 6, 6)), np.empty(0, np.int64), np.empty(0, np.int64),
+            np.zeros((0, 3, 3)))
+    if not (mode == jt.DIRECT).any():
+        return none
+    size = n + ja.shape[0]
     nodes = np.empty(size, np.int64)
     parent = np.empty(size, np.int64)
-    count = jt.order(j.a, j.b, movable, rows.mode, nodes, parent)
+    count = jt.order(ja, jb, movable, mode, nodes, parent)
     dinv = np.zeros((count, 6, 6))
     low = np.zeros((count, 6, 6))
-    extra = np.zeros((b.inv_mass.shape[0], 3, 3))
+    extra = np.zeros((n, 3, 3))
     if geometric:
-        jd.geometric(j.a, j.b, rows.mode, rows.ra, rows.rb, point, b.inv_inertia_world, dt,
-                     extra)
-    n = b.inv_mass.shape[0]
-    loops = np.flatnonzero(rows.mode == jt.LOOP)
+        jd.geometric(ja, jb, mode, ra, rb, point, inv_i, dt, extra)
+    loops = np.flatnonzero(mode == jt.LOOP)
     where = np.full(n, -1, np.int64)
-    bodies = nodes[:count] < n
-    where[nodes[:count][bodies]] = np.flatnonzero(bodies)
+    for p in range(count):
+        if nodes[p] < n:
+            where[nodes[p]] = p
     sinv = np.zeros((loops.shape[0], 3, 3))
-    if not jd.factor(nodes, parent, count, n, j.a, rows.ra, rows.rb, b.inv_mass,
-                     b.inv_inertia_world, extra, dinv, low):
-        rows.mode[rows.mode >= jt.DIRECT] = jt.ITERATIVE
-        return ()
-    if not jl.masses(loops, nodes, parent, count, n, where, j.a, j.b, rows.ra, rows.rb, dinv,
-                     low, sinv):  # a loop the tree cannot move along (a straight ring)
-        rows.mode[loops] = jt.ITERATIVE
-        loops = loops[:0]
-    return nodes, parent, count, dinv, low, loops, where, sinv
+    if not jd.factor(nodes, parent, count, n, ja, ra, rb, inv_mass, inv_i, extra, dinv, low):
+        for k in range(mode.shape[0]):
+            if mode[k] >= jt.DIRECT:
+                mode[k] = jt.ITERATIVE
+        return none
+    if not jl.masses(loops, nodes, parent, count, n, where, ja, jb, ra, rb, dinv, low,
+                     sinv):  # a loop the tree cannot move along (a straight ring)
+        for k in range(loops.shape[0]):
+            mode[loops[k]] = jt.ITERATIVE
+        loops = np.empty(0, np.int64)
+    return True, nodes, parent, count, dinv, low, loops, where, sinv
 
 
 def warm_start(bodies, joints, rows: JointRows) -> None:
@@ -167,35 +200,56 @@ def velocity_pass(bodies, joints, rows: JointRows) -> float:
     """One pass: first the targets from the predicted end pose (``joint_predict``; unless
     ``rows.predict`` is off), then Gauss–Seidel over the rows, the tree solve and the loops;
     returns the largest predicted excess or velocity change [m/s or rad/s]."""
+    n = bodies.inv_mass.shape[0]
+    return float(pass_kernel(rows.predict, *kernel_args(bodies, joints, rows),
+                             np.empty((n, 3)), np.empty((n, 4))))
+
+
+#: What ``kernel_args`` gives for a forest that has no DIRECT joint (``JointRows.tree`` ()).
+_NO_TREE = (np.empty(0, np.int64), np.empty(0, np.int64), 0, np.empty((0, 6, 6)),
+            np.empty((0, 6, 6)), np.empty(0, np.int64), np.empty(0, np.int64),
+            np.empty((0, 3, 3)))
+
+
+def kernel_args(bodies, joints, rows: JointRows) -> tuple:
+    """``pass_kernel``'s arguments after ``predict`` and before its scratch arrays: the joints',
+    the rows', the tree's (placeholders for none) and the bodies'."""
     j = joints.arrays()
     b = bodies
+    tree = rows.tree if rows.tree else _NO_TREE
+    return (j.a, j.b, j.local_a, j.local_b, rows.ra, rows.rb, rows.kmat, rows.bias, rows.axis,
+            rows.mass, rows.target, rows.row, rows.lam, rows.mode, rows.mass_scale,
+            rows.impulse_scale, rows.through, rows.keep, rows.speed,
+            jt.LOOP if rows.aim_loops else jt.DIRECT, rows.dt, bool(rows.tree), *tree,
+            b.position, b.orientation, b.velocity, b.angular_velocity, b.inv_mass,
+            b.inv_inertia, b.inv_inertia_world, joints.point)
+
+
+@njit(cache=True, nogil=True)
+def pass_kernel(predict, ja, jb, la, lb, ra, rb, kmat, bias, axis, mass, target, row, lam, mode,
+                mass_scale, impulse_scale, through, keep, speed, top, dt, tree, nodes, parent,
+                count, dinv, low, loops, where, sinv, pos, quat, vel, ang, inv_mass,
+                inv_inertia, inv_i, point, xend, qend):
+    """``velocity_pass`` in one compiled call (the arguments: ``kernel_args``; ``xend`` (N, 3)
+    and ``qend`` (N, 4) are the prediction's scratch): the same kernels in the same order."""
+    n = inv_mass.shape[0]
     change = 0.0
-    if rows.predict:
-        n = b.inv_mass.shape[0]
-        change = float(joint_predict.end_targets(
-            j.a, j.b, j.local_a, j.local_b, b.position, b.orientation, b.velocity,
-            b.angular_velocity, b.inv_inertia, rows.dt, rows.mode, rows.ra, rows.rb, rows.keep,
-            rows.bias, np.empty((n, 3)), np.empty((n, 4)), rows.speed,
-            jt.LOOP if rows.aim_loops else jt.DIRECT))
-    change = max(change, float(js.solve_pass(
-        j.a, j.b, rows.ra, rows.rb, rows.kmat, rows.bias, rows.axis, rows.mass, rows.target,
-        rows.row, b.inv_mass, b.inv_inertia_world, b.velocity, b.angular_velocity,
-        joints.point, rows.lam, rows.mode, rows.mass_scale, rows.impulse_scale, rows.through)))
-    if rows.tree:
-        nodes, parent, count, dinv, low, loops, where, sinv = rows.tree
-        n = b.inv_mass.shape[0]
-        change = max(change, float(jd.solve(nodes, parent, count, n, j.a, j.b, rows.ra,
-                                            rows.rb, rows.bias, dinv, low, b.velocity,
-                                            b.angular_velocity, joints.point)))
+    if predict:
+        change = joint_predict.end_targets(ja, jb, la, lb, pos, quat, vel, ang, inv_inertia, dt,
+                                           mode, ra, rb, keep, bias, xend, qend, speed, top)
+    change = max(change, js.solve_pass(ja, jb, ra, rb, kmat, bias, axis, mass, target, row,
+                                       inv_mass, inv_i, vel, ang, point, lam, mode, mass_scale,
+                                       impulse_scale, through))
+    if tree:
+        change = max(change, jd.solve(nodes, parent, count, n, ja, jb, ra, rb, bias, dinv, low,
+                                      vel, ang, point))
         if loops.shape[0]:
-            change = max(change, float(jl.solve(
-                loops, nodes, parent, count, n, where, j.a, j.b, rows.ra, rows.rb, rows.bias,
-                dinv, low, sinv, b.velocity, b.angular_velocity, joints.point)))
-        if rows.through.any():
-            change = max(change, float(jl.row_solve(
-                nodes, parent, count, n, where, j.a, j.b, rows.axis, rows.row, rows.mass,
-                rows.target, rows.through, dinv, low, b.velocity, b.angular_velocity,
-                joints.point, rows.lam, LIMIT)))
+            change = max(change, jl.solve(loops, nodes, parent, count, n, where, ja, jb, ra, rb,
+                                          bias, dinv, low, sinv, vel, ang, point))
+        if through.any():
+            change = max(change, jl.row_solve(nodes, parent, count, n, where, ja, jb, axis, row,
+                                              mass, target, through, dinv, low, vel, ang, point,
+                                              lam, LIMIT))
     return change
 
 
