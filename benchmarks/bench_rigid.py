@@ -317,7 +317,7 @@ def row(name: str, steps: int, full: bool, rate: float, base: float | None, n: i
             f"{m['box pen']:.4f} / {m['floor pen']:.4f} | {m['escapes']} |")
 
 
-STAGES = ("_substep_bodies", "generate", "contact_step", "soft_passes", "sweep_back",
+STAGES = ("step", "generate", "contact_step", "soft_passes", "sweep_back",
           "kinetic_energy")
 
 

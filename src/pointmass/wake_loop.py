@@ -7,6 +7,7 @@ world's stores and its sleep state (``_longest_still``, ``_plinks``, ``_wakes_se
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from functools import partial
 from typing import TYPE_CHECKING
 
@@ -96,13 +97,14 @@ def wake_particles(world: World, marked: np.ndarray) -> np.ndarray:
     return woken
 
 
-def find_body_rows(world: World, h: float, dt: float, acc: np.ndarray, planes: list,
-                   opening: float, table: np.ndarray | None = None):
+def find_body_rows(world: World, dt: float, acc: np.ndarray, planes: list,
+                   kick: Callable[[np.ndarray], None], table: np.ndarray | None = None):
     """This substep's body rows, then the particle–body rows; returns the packed view (or
     None) and ``acc`` extended to it. A sleeping island that a row wakes gets its first kick
-    (of ``opening``, the soft step's leapfrog half kick, for a drift of h) and the rows are
-    made again, until no row touches a sleeping body that should wake. ``planes``: the
-    world's ``Plane``s (``World._planes``, found once a step); ``table``: their
+    (``kick``, called with the mask of the bodies woken: the soft step's leapfrog half kick,
+    ``body_stage.kick``) and the rows are made again, until no row touches a sleeping body
+    that should wake. ``planes``: the
+    world's ``Plane``s (``body_stage.world_planes``, found once a step); ``table``: their
     ``collide.plane_table`` when the caller has it."""
     b = world.bodies
     p = world.particles
@@ -135,7 +137,7 @@ def find_body_rows(world: World, h: float, dt: float, acc: np.ndarray, planes: l
                 was = b.awake.copy()
                 wake_particles(world, out)
                 if (b.awake & ~was).any():  # their first kick
-                    world._kick(opening, b.awake & ~was, h)
+                    kick(b.awake & ~was)
                 continue  # again, with the woken
             slot = c.a >= b.count
             reach = np.zeros(c.a.shape[0], np.bool_)
@@ -149,7 +151,7 @@ def find_body_rows(world: World, h: float, dt: float, acc: np.ndarray, planes: l
         if not woken.any():
             sleeping.leave_sleepers_out(b, world.body_contacts, packed)
             return packed, full
-        world._kick(opening, b.wake_islands(np.unique(b.island[woken])), h)
+        kick(b.wake_islands(np.unique(b.island[woken])))
 
 
 def body_links(world: World) -> np.ndarray:

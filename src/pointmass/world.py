@@ -10,8 +10,8 @@ from typing import Any
 import numpy as np
 
 from . import _validate as check
+from . import body_stage
 from . import wake_loop as wake
-from .collide import Plane
 from .contacts import ContactBuffer, ContactGenerator, friction_value, restitution_value
 from .forces import ForceGenerator, fold
 from .particle_integration import integrate_particles
@@ -19,15 +19,12 @@ from .particle_sleep import active as moving_particles
 from .particles import Particles
 from .rigid import sleep as sleeping
 from .rigid.bodies import Bodies, Body
-from .rigid.collide import plane_table
 from .rigid.contacts import BodyContacts
 from .rigid.forces import BodyForceGenerator
 from .rigid.joint_set import Joints
 from .rigid.joints import Joint
 from .rigid.shapes import Box, Sphere
-from .rigid.step import force_acceleration, integrate_velocities, spin_error
-from .solver import ImpulseHistory, Solver, SolverSettings, SolveStats, body_soft
-from .solver.body_continuous import sweep_back
+from .solver import ImpulseHistory, Solver, SolverSettings, SolveStats
 from .stability import SpringCheck, jump_check, needs_jump_check
 from .step_stats import StepStats
 
@@ -467,7 +464,7 @@ class World:
         else:  # what the particle stages do with no particles: no rows, nothing kept
             self.impulses.clear()
         if self.bodies.count:
-            rows = self._substep_bodies(dt)
+            rows = body_stage.step(self, dt)
             velocity += rows.velocity_passes
             position += rows.position_passes
         return resolutions, velocity, position
@@ -495,191 +492,6 @@ class World:
 
         # Resolve them: impacts, resting contacts and links, then interpenetration.
         return self.solver.solve(p, self.contacts, self.impulses, dt)
-
-    def _substep_bodies(self, dt: float):
-        """The rigid bodies' substep: the first kick (gravity, forces, torques over
-        dt / ``settings.soft_substeps``), contacts once, then the soft step's substeps
-        (``solver/body_soft.py``: kick, warm start, soft solve, drift, relax; restitution),
-        then its continuous collision (``solver/body_continuous.py``: a fast body back to
-        where its step first meets what the collision pass did not foresee).
-        Particles with a radius that touch a body join the stage as bodies without inertia
-        (``rigid/particle_body.py``); with none touching, the stage sees the bodies alone, as
-        in a world without particles. Sleeping bodies are skipped throughout
-        (``rigid/sleep.py``)."""
-        b = self.bodies
-        st = self.solver.settings
-        h = dt / st.soft_substeps
-        kept, acc = self._apply_body_forces(h)  # for the first substep (and found again)
-        p = self.particles
-        if self._sleep and not (p.count and p.awake.any()) and not sleeping.any_active(b):
-            # everything asleep (but still scenery: a static body stays awake) and no force
-            # woke it: no body and no particle can move or touch anything this step, so there
-            # is no row to find and nothing to solve
-            if kept is not None:
-                b.force[:], b.torque[:] = kept
-            return self._stay_asleep()
-        x_start, q_start = b.position.copy(), b.orientation.copy()  # the sweep's start
-        # the particles the integration moved (and kicked by dt); none: no packed view
-        integrated = p.awake.copy() if p.count else None
-        planes = self._planes()  # found once a step, and their table (collision, sweep)
-        table = plane_table(planes)
-        try:  # the first kicks (here, and of woken bodies); ``body_soft`` gives the others
-            # the leapfrog (``body_soft``): a body goes on from the half-step velocity its
-            # last step drifted with, kicked by h; one whose velocity that step did not leave
-            # (just added, set by hand, woken) starts from it with a half kick
-            self._open_leapfrog(h)
-            packed, acc = wake.find_body_rows(self, h, dt, acc, planes, opening=h / 2,
-                                              table=table)
-            self._packed = packed  # the islands read its particles (``_fall_asleep``)
-            view = b
-            if packed is not None:
-                view = packed
-                assert integrated is not None  # a packed view holds particles
-                self._first_particle_kick(packed, integrated, h, dt, acc)
-            forces = None
-            if self.body_forces:  # found again every substep, where the bodies then are
-                forces = partial(self._refind_body_forces, view, kept, h)
-            rows = body_soft.step(view, b, self.body_contacts, acc, self.body_impulses, dt,
-                                  self.solver.restitution_threshold, self._gravity,
-                                  self.joints if self.joints else None, forces=forces,
-                                  settings=st)
-        finally:
-            if kept is not None:
-                b.force[:], b.torque[:] = kept
-        if packed is not None:
-            packed.take_positions(b, p)
-            b.velocity[:] = packed.velocity[:b.count]
-            p.velocity[packed.selected] = packed.velocity[b.count:]
-        # what the step's one collision pass did not foresee: a fast body is put back where
-        # it first meets a static body or a plane (``solver/body_continuous.py``); only an
-        # awake body can be fast
-        if b.awake.any():
-            exclude = self.joints.pair_keys(b.count) if self.joints else None
-            anchored = [j.a for j in self.joints.items if j.b < 0] if self.joints else None
-            # the sweep reads the velocities the step drifted with (the leapfrog's half-step
-            # ones); the step's synchronised ones wait in ``left_velocity`` meanwhile
-            body_soft.before_sweep(b.velocity, b.angular_velocity, b.half_velocity,
-                                   b.half_spin, b.left_velocity, b.left_spin)
-            sweep_back(b, planes, exclude, x_start, q_start, dt, anchored, st, table)
-            body_soft.after_sweep(b.awake, b.velocity, b.angular_velocity, b.half_velocity,
-                                  b.half_spin, b.left_velocity, b.left_spin)
-        else:
-            body_soft.leave_step(b.awake, b.velocity, b.angular_velocity, b.left_velocity,
-                                 b.left_spin)  # what this step left (``_open_leapfrog``)
-        self._body_rows = rows
-        return rows
-
-    def _stay_asleep(self) -> body_soft.SoftRows:
-        """The soft body stage of a substep in which every body and particle sleeps (but still
-        static bodies, which stay awake): what the whole stage leaves then (no rows, no
-        impulses kept, each body's half-step velocity its own, none left for a sleeper),
-        without its passes over empty work."""
-        b = self.bodies
-        if self.body_contacts.a.shape[0]:
-            self.body_contacts.resize(0)
-        self.body_impulses.clear()
-        self._packed = None
-        b.half_velocity[:] = b.velocity
-        b.half_spin[:] = b.angular_velocity
-        body_soft.leave_step(b.awake, b.velocity, b.angular_velocity, b.left_velocity,
-                             b.left_spin)
-        rows = body_soft.SoftRows(self.body_contacts)
-        self._body_rows = rows
-        return rows
-
-    def _open_leapfrog(self, h: float) -> None:
-        """The soft step's leapfrog opening (``body_soft``, "Leapfrog") and its first kick:
-        each awake body whose velocity and spin are still the ones the last step left goes on
-        from the half-step velocity and spin that step drifted with, kicked by ``h``; the
-        others start from their velocity with a half kick."""
-        b = self.bodies
-        spun, half = body_soft.open_and_kick(
-            b.awake, b.velocity, b.angular_velocity, b.left_velocity, b.left_spin,
-            b.half_velocity, b.half_spin, b.force, b.torque, b.inv_mass, b.inv_inertia,
-            b.inv_inertia_world, b.linear_damping, b.angular_damping, self._gravity, h)
-        if spun >= 0:
-            raise spin_error(b, spun, h / 2 if half else h, self.time)
-
-    def _planes(self) -> list[Plane]:
-        """The world's ``Plane``s (and ``Ground``s) among its contact generators: what the
-        body stages collide and sweep against, found once a step."""
-        return [g for g in self.contact_generators if isinstance(g, Plane)]
-
-    def _first_particle_kick(self, packed, integrated: np.ndarray, h: float, dt: float,
-                             acc: np.ndarray) -> None:
-        """The soft step's particle rows start, as its bodies do, with one substep's kick of
-        h: the integration gave those it moved the whole dt's (kept: one substep's); one
-        that a body's row woke since (``find_body_rows``) was not integrated: it gets its h
-        (at g + F/m: what the integration gives a particle at rest); a sleeper in the view
-        (its rows left out) gets none and stays out of the substeps (not awake in the view:
-        with the whole view kicked, a particle asleep on a box rose 1 mm in its first step
-        asleep, which woke it again, for ever)."""
-        n = self.bodies.count
-        p = self.particles
-        sel = packed.selected
-        awake = p.awake[sel]
-        packed.awake[n:] = awake
-        moved = integrated[sel]
-        packed.velocity[n:][moved] -= p.acceleration[sel[moved]] * (dt - h)
-        woken = awake & ~moved
-        if woken.any():
-            i = sel[woken]
-            a = self._folded[1] + p.force[i] * p.inv_mass[i, None]
-            p.acceleration[i] = a
-            acc[n:][woken] = a
-            # at rest until now: v = a·h, then the particle's damping over h (as integrated)
-            packed.velocity[n:][woken] = a * h * (p.damping[i] ** h)[:, None]
-
-    def _apply_body_forces(self, dt: float):
-        """Let the body force generators add to the user's forces for this substep (of ``dt``:
-        the soft step's first, whose others find them again), wake the
-        bodies they push, and return (the user's own forces and torques to put back after the
-        substep, or None; what the forces alone give each body [m/s²], for the resting-contact
-        trick)."""
-        b = self.bodies
-        kept = None
-        if self.body_forces:
-            kept = b.force.copy(), b.torque.copy()
-            try:
-                for generator in self.body_forces:
-                    generator.apply(b, dt)
-            except BaseException:
-                b.force[:], b.torque[:] = kept
-                raise
-        if self._sleep:
-            sleeping.wake_pushed(b)
-        return kept, force_acceleration(b.inv_mass, b.force, self._gravity)
-
-    def _refind_body_forces(self, view, kept, h: float) -> np.ndarray:
-        """The soft step's forces found again within its step (``body_soft.step``'s
-        ``forces``): the user's own forces and torques, plus every body force generator at the
-        bodies' current state (read from ``view``, the packed copy when particles take part);
-        returns what the forces alone give each body [m/s²]."""
-        b = self.bodies
-        if view is not b:
-            n = b.count
-            b.position[:] = view.position[:n]
-            b.orientation[:] = view.orientation[:n]
-            b.velocity[:] = view.velocity[:n]
-            b.angular_velocity[:] = view.angular_velocity[:n]
-        b.force[:], b.torque[:] = kept
-        for generator in self.body_forces:
-            generator.apply(b, h)
-        return force_acceleration(b.inv_mass, b.force, self._gravity)
-
-    def _kick(self, dt: float, which: np.ndarray, drift: float = 0.0) -> None:
-        """The velocity half of the bodies' integration over ``dt``, for the bodies of mask
-        ``which``: gravity, forces, torques and damping (the soft step's first substep; its
-        later substeps' kicks are ``body_soft.kick``, with the same forces). ``drift``: the
-        drift that follows when it is not ``dt`` (a leapfrog's opening half kick), for the
-        spin's cap (``integrate_velocities``)."""
-        b = self.bodies
-        spun = integrate_velocities(b.velocity, b.angular_velocity, b.force, b.torque,
-                                    b.inv_mass, b.inv_inertia, b.inv_inertia_world,
-                                    b.linear_damping, b.angular_damping, self._gravity, dt, which,
-                                    drift)
-        if spun >= 0:
-            raise spin_error(b, spun, dt, self.time)
 
     # -- measurements ---------------------------------------------------------------------------
     def kinetic_energy(self) -> float:

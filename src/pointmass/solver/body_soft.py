@@ -42,7 +42,7 @@ closing half kick with the last substep's forces, then the velocities projected 
 step's rows (the contacts' relax passes from half the last substep's impulses, the half
 kick's share, their sum kept ≥ 0, so a bounce is not taken back; the joints' relax), so a
 body at rest on the ground or hanging from a joint is reported at rest. The next step goes
-on from the half-step velocity with a whole kick (``World._open_leapfrog``; the continuous
+on from the half-step velocity with a whole kick (``body_stage._open_leapfrog``; the continuous
 stage reads it too); a body whose velocity the last step did not leave (just added, set by
 hand, woken, put back by the sweep) starts from it with a half kick. So the contacts and
 joints solve what they solved before; what changed is the start and the velocity the world
@@ -733,7 +733,7 @@ def _accelerated(gravity, force, torque):
 
 @njit(cache=True, nogil=True)
 def open_step(awake, vel, ang, left_v, left_w, half_v, half_w, fresh):
-    """The leapfrog's opening (``World._open_leapfrog``): each awake body whose velocity and
+    """The leapfrog's opening (``body_stage._open_leapfrog``): each awake body whose velocity and
     spin are bit for bit the ones the last step left (``left_v``, ``left_w``; inf: none) goes
     on from the half-step ones that step drifted with (``half_v``, ``half_w``); ``fresh`` (N,)
     leaves True for every other body (a body just added, set by hand, asleep or woken)."""
@@ -752,7 +752,7 @@ def open_step(awake, vel, ang, left_v, left_w, half_v, half_w, fresh):
 @njit(cache=True, nogil=True)
 def open_and_kick(awake, vel, ang, left_v, left_w, half_v, half_w, force, torque, inv_mass,
                   inv_inertia, inv_i, lin_d, ang_d, g, h):
-    """The leapfrog's opening and the first kick in one call (``World._open_leapfrog``):
+    """The leapfrog's opening and the first kick in one call (``body_stage._open_leapfrog``):
     ``open_step``, then a whole kick of ``h`` for the bodies that go on from their half-step
     velocity and a half kick (followed by a drift of ``h``) for the fresh ones. Returns
     (the first body whose spin is not finite, or -1; 1 if it was in the half kick)."""
@@ -784,7 +784,7 @@ def leave_step(awake, vel, ang, left_v, left_w):
 
 @njit(cache=True, nogil=True)
 def before_sweep(vel, ang, half_v, half_w, left_v, left_w):
-    """Before the continuous stage (``World._substep_bodies_soft``): the synchronised
+    """Before the continuous stage (``body_stage.step``): the synchronised
     velocities the step left wait in ``left_v``, ``left_w``, and the bodies take the
     half-step ones their last drift moved with, which the sweep reads (``after_sweep``)."""
     for i in range(vel.shape[0]):
@@ -1114,7 +1114,7 @@ def step(view, bodies, contacts: BodyContacts, acceleration: np.ndarray,
     """The soft step over ``dt`` (module docstring) on ``view`` (the bodies, or the packed
     view of bodies and particles) with the tuning numbers of ``settings`` (``World.settings``;
     the defaults when None), whose first kick of dt/``settings.soft_substeps`` is already done
-    (``World._kick``): the later kicks give gravity, damping and the forces and torques in
+    (``body_stage.kick``): the later kicks give gravity, damping and the forces and torques in
     ``bodies.force`` / ``bodies.torque`` (the step's, found once), ``bodies`` the damping;
     ``acceleration`` (one row per view body) what forces
     alone give each one [m/s²] (for particle rows: their kick). Without joints the step is

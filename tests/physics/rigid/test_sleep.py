@@ -436,7 +436,7 @@ def test_sleep_with_substeps_is_deterministic_and_still_sleeps():
 
 
 def test_a_world_all_asleep_steps_without_changing_a_bit_and_wakes_as_before():
-    """With every body asleep the soft stage only keeps its books (``World._stay_asleep``: no
+    """With every body asleep the soft stage only keeps its books (``body_stage._stay_asleep``: no
     rows, nothing solved): 200 such steps leave every body's state, the kept impulses and the
     contacts bit for bit as the first left them; then a particle thrown at the pile and a
     push by hand wake it, as with the whole stage (the particle's rows, the force). A static
