@@ -87,11 +87,8 @@ def step(world: World, dt: float) -> body_soft.SoftRows:
         anchored = [j.a for j in world.joints.items if j.b < 0] if world.joints else None
         # the sweep reads the velocities the step drifted with (the leapfrog's half-step
         # ones); the step's synchronised ones wait in ``left_velocity`` meanwhile
-        body_soft.before_sweep(b.velocity, b.angular_velocity, b.half_velocity,
-                               b.half_spin, b.left_velocity, b.left_spin)
-        sweep_back(b, planes, exclude, x_start, q_start, dt, anchored, st, table)
-        body_soft.after_sweep(b.awake, b.velocity, b.angular_velocity, b.half_velocity,
-                              b.half_spin, b.left_velocity, b.left_spin)
+        sweep_back(b, planes, exclude, x_start, q_start, dt, anchored, st, table,
+                   leapfrog=True)
     else:
         body_soft.leave_step(b.awake, b.velocity, b.angular_velocity, b.left_velocity,
                              b.left_spin)  # what this step left (``_open_leapfrog``)

@@ -713,22 +713,75 @@ def clamp(pos, quat, vel, ang, inv_mass, inv_inertia, inv_i, shape, size, awake,
 
 def sweep_back(bodies, planes, exclude, x_start: np.ndarray, q_start: np.ndarray,
                dt: float, anchored=None, settings: SolverSettings | None = None,
-               table: np.ndarray | None = None) -> int:
+               table: np.ndarray | None = None, leapfrog: bool = False) -> int:
     """``clamp`` on a ``Bodies`` and the world's ``Plane``s (``exclude``: the jointed pairs'
     keys, ``anchored``: the bodies jointed to a world point; None for none) with the slop and
     safety factor of ``settings`` (``World.settings``; the defaults when None); returns the
     bodies moved. ``table``: the planes' ``collide.plane_table`` (made here when None: the
-    world makes it once a step for the collision and this)."""
+    world makes it once a step for the collision and this). ``leapfrog``: the bodies' velocity
+    is the soft step's synchronised one and the sweep reads the half-step one the step drifted
+    with (``before_sweep``, ``after_sweep``, in the same compiled call)."""
     st = _DEFAULTS if settings is None else settings
     b = bodies
     if table is None:
         table = plane_table(planes)
     plane_n = np.ascontiguousarray(table[:, :3])
     plane_d = np.ascontiguousarray(table[:, 3])
-    if exclude is None:
-        exclude = np.zeros(0, np.int64)
-    anchored = np.zeros(0, np.int64) if anchored is None else np.asarray(anchored, np.int64)
-    return int(clamp(b.position, b.orientation, b.velocity, b.angular_velocity, b.inv_mass,
-                     b.inv_inertia, b.inv_inertia_world, b.shape, b.size, b.awake, x_start,
-                     q_start, dt, plane_n, plane_d, exclude, anchored, st.continuous_slop,
-                     st.continuous_safety))
+    exclude = _NO_KEYS if exclude is None else exclude
+    anchored = _NO_KEYS if anchored is None else np.asarray(anchored, np.int64)
+    args = (b.position, b.orientation, b.velocity, b.angular_velocity, b.inv_mass, b.inv_inertia,
+            b.inv_inertia_world, b.shape, b.size, b.awake, x_start, q_start, dt, plane_n,
+            plane_d, exclude, anchored, st.continuous_slop, st.continuous_safety)
+    if leapfrog:
+        return int(_leapfrog_clamp(*args, b.half_velocity, b.half_spin, b.left_velocity,
+                                   b.left_spin))
+    return int(clamp(*args))
+
+
+#: No keys (``sweep_back``'s ``exclude`` and ``anchored`` when None).
+_NO_KEYS = np.zeros(0, np.int64)
+
+
+@njit(cache=True, nogil=True)
+def _leapfrog_clamp(pos, quat, vel, ang, inv_mass, inv_inertia, inv_i, shape, size, awake,
+                    x_start, q_start, dt, plane_n, plane_d, exclude, anchored, slop, safety,
+                    half_v, half_w, left_v, left_w):
+    """``before_sweep``, ``clamp``, ``after_sweep`` in one call (a tiny world's step paid ~1 µs
+    a call for the three)."""
+    before_sweep(vel, ang, half_v, half_w, left_v, left_w)
+    moved = clamp(pos, quat, vel, ang, inv_mass, inv_inertia, inv_i, shape, size, awake,
+                  x_start, q_start, dt, plane_n, plane_d, exclude, anchored, slop, safety)
+    after_sweep(awake, vel, ang, half_v, half_w, left_v, left_w)
+    return moved
+
+
+@njit(cache=True, nogil=True)
+def before_sweep(vel, ang, half_v, half_w, left_v, left_w):
+    """Before the continuous stage (``body_stage.step``): the synchronised
+    velocities the step left wait in ``left_v``, ``left_w``, and the bodies take the
+    half-step ones their last drift moved with, which the sweep reads (``after_sweep``)."""
+    for i in range(vel.shape[0]):
+        for u in range(3):
+            left_v[i, u] = vel[i, u]
+            left_w[i, u] = ang[i, u]
+            vel[i, u] = half_v[i, u]
+            ang[i, u] = half_w[i, u]
+
+
+@njit(cache=True, nogil=True)
+def after_sweep(awake, vel, ang, half_v, half_w, left_v, left_w):
+    """After the continuous stage: each body takes back its synchronised velocity, and
+    ``left_v``, ``left_w`` keep it (``leave_step``), but for a body the sweep put back with its
+    velocity turned (its own-frame spin kept): it keeps the sweep's and starts the next step
+    afresh from it (marked inf; its half-step velocity was of the pose before)."""
+    for i in range(vel.shape[0]):
+        turned = False
+        for u in range(3):
+            if vel[i, u] != half_v[i, u] or ang[i, u] != half_w[i, u]:
+                turned = True
+        for u in range(3):
+            if not turned:
+                vel[i, u] = left_v[i, u]
+                ang[i, u] = left_w[i, u]
+            if turned or not awake[i]:
+                left_v[i, u] = np.inf

@@ -782,38 +782,6 @@ def leave_step(awake, vel, ang, left_v, left_w):
             left_w[i, u] = ang[i, u]
 
 
-@njit(cache=True, nogil=True)
-def before_sweep(vel, ang, half_v, half_w, left_v, left_w):
-    """Before the continuous stage (``body_stage.step``): the synchronised
-    velocities the step left wait in ``left_v``, ``left_w``, and the bodies take the
-    half-step ones their last drift moved with, which the sweep reads (``after_sweep``)."""
-    for i in range(vel.shape[0]):
-        for u in range(3):
-            left_v[i, u] = vel[i, u]
-            left_w[i, u] = ang[i, u]
-            vel[i, u] = half_v[i, u]
-            ang[i, u] = half_w[i, u]
-
-
-@njit(cache=True, nogil=True)
-def after_sweep(awake, vel, ang, half_v, half_w, left_v, left_w):
-    """After the continuous stage: each body takes back its synchronised velocity, and
-    ``left_v``, ``left_w`` keep it (``leave_step``), but for a body the sweep put back with its
-    velocity turned (its own-frame spin kept): it keeps the sweep's and starts the next step
-    afresh from it (marked inf; its half-step velocity was of the pose before)."""
-    for i in range(vel.shape[0]):
-        turned = False
-        for u in range(3):
-            if vel[i, u] != half_v[i, u] or ang[i, u] != half_w[i, u]:
-                turned = True
-        for u in range(3):
-            if not turned:
-                vel[i, u] = left_v[i, u]
-                ang[i, u] = left_w[i, u]
-            if turned or not awake[i]:
-                left_v[i, u] = np.inf
-
-
 # --- the step ----------------------------------------------------------------------------------
 
 class _Rows:
