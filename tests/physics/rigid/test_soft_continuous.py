@@ -440,3 +440,38 @@ def test_a_pair_rewound_into_the_ground_goes_back_along_its_sweeps_instead():
     gap = b.position[1, 1] - b.position[0, 1] - 0.6
     assert SLOP - 1e-12 <= gap <= SLOP + TOLERANCE
     assert b.velocity.tolist() == velocity.tolist()
+
+
+def test_the_leapfrog_sweep_in_one_call_is_the_three_calls_bit_for_bit():
+    """``sweep_back(..., leapfrog=True)`` (the world's call: the leapfrog's swaps and the sweep
+    in one compiled call, ``_leapfrog_clamp``) leaves every array as ``before_sweep``,
+    ``sweep_back``, ``after_sweep`` called one after another do: a fast box swept back (its
+    velocity turned), a slow one left alone, and a body asleep."""
+    from pointmass.solver.body_continuous import after_sweep, before_sweep
+
+    def scene():
+        world, ground, _ = _world(Box((0.05, 0.05, 0.05)), (0.3, 0.5, 0.0),
+                                  velocity=(3.0, -60.0, 0.0), spin=(0.0, 0.0, 40.0))
+        world.add_body(Sphere(0.1), (2.0, 0.5, 0.0), mass=1.0, velocity=(0.5, -0.2, 0.0))
+        world.add_body(Box((0.2, 0.2, 0.2)), (-2.0, 0.2, 0.0), mass=1.0)
+        b = world.bodies
+        b.awake[2] = False
+        rng = np.random.default_rng(3)
+        b.half_velocity[:] = b.velocity + rng.normal(0.0, 0.1, (3, 3))
+        b.half_spin[:] = b.angular_velocity + rng.normal(0.0, 0.1, (3, 3))
+        x0, q0 = b.position.copy(), b.orientation.copy()
+        b.position[:] += b.half_velocity * DT  # where the straight step ends (in the ground)
+        return world, ground, x0, q0
+
+    one, ground, x0, q0 = scene()
+    moved = sweep_back(one.bodies, [ground], None, x0, q0, DT, leapfrog=True)
+    three, ground3, y0, r0 = scene()
+    b = three.bodies
+    before_sweep(b.velocity, b.angular_velocity, b.half_velocity, b.half_spin, b.left_velocity,
+                 b.left_spin)
+    assert sweep_back(b, [ground3], None, y0, r0, DT) == moved == 1
+    after_sweep(b.awake, b.velocity, b.angular_velocity, b.half_velocity, b.half_spin,
+                b.left_velocity, b.left_spin)
+    for name in ("position", "orientation", "velocity", "angular_velocity", "left_velocity",
+                 "left_spin"):
+        assert np.array_equal(getattr(one.bodies, name), getattr(b, name)), name
