@@ -64,18 +64,17 @@ What (after the substeps and the restitution):
    groups (or a body a world point holds) go back whole, each body along its sweep to the
    pair's time of impact.
 
-Momentum and energy: the stage moves poses only; a body turned back keeps its spin in its
-own frame, so its kinetic
-energy, linear momentum and |I·ω| are those the solve gave. The angular momentum about a
-fixed origin changes by Δx × p of a moved body (nothing when its end velocity is along its
+Momentum and energy: the stage moves poses only; a body turned back keeps its spin in its own frame,
+so its kinetic energy, linear momentum and |I·ω| are those the solve gave. The angular momentum
+about a fixed origin changes by Δx × p of a moved body (nothing when its end velocity is along its
 step's displacement, as in free flight) and by its spin's turn back. Against static bodies and
-planes that is no loss (they take momentum anyway; Box2D's clamp does not conserve it either);
-a pair of moving bodies is rewound about its centre of mass where it can be, which keeps
-both momenta, and swept back (changing the angular momentum as above) only where the rows
-turned it or a spin took it in. Pairs the rows held are never moved. Tried before the depth
-gate: sweeping a fast body against the moving bodies' end poses (Box2D's bullets), or both
-bodies of every fast pair back to its time of impact, acted on collisions the rows had
-caught: two 0.1 m boxes colliding at 5 m/s lost 2 % of their angular momentum.
+planes that is no loss (they take momentum anyway; Box2D's clamp does not conserve it either); a
+pair of moving bodies is rewound about its centre of mass where it can be, which keeps both momenta,
+and swept back (changing the angular momentum as above) only where the rows turned it or a spin took
+it in. Pairs the rows held are never moved. Tried before the depth gate: sweeping a fast body
+against the moving bodies' end poses (Box2D's bullets), or both bodies of every fast pair back to
+its time of impact, acted on collisions the rows had caught: two 0.1 m boxes colliding at 5 m/s lost
+2 % of their angular momentum.
 
 Measured (dt 1/60; before → after): the thin wall (tests/physics/rigid/test_thin_wall.py,
 boxes and spheres, 0°–60°, 50–500 m/s, 16 phases): rough boxes passed in up to 4 of 16
