@@ -103,8 +103,11 @@ def build(p: Params) -> Scene:
                                  restitution=0.1)
             for name, (centre, half) in BONES.items()}
     made = [world.add(j) for j in joints(bone)]
-    scene = Scene(world, camera=CameraHint(target=(0.7, 0.9, 0.5), distance=6.0, yaw=40.0,
-                                           pitch=22.0),
+    # the camera follows the chest: the push sends the body a metre or two any way, and
+    # a fixed view 6 m off showed it small, off centre, once it lay on the ground
+    chest = bone["chest"]
+    scene = Scene(world, camera=CameraHint(target=tuple(chest.position), distance=3.5,
+                                           yaw=40.0, pitch=25.0, follow_body=chest.index),
                   dt=1.0 / 60.0,
                   handles={"bones": bone, "joints": made, "worst_gap": 0.0, "lowest": 0.0,
                            "worst_angle": 0.0, "rng": np.random.default_rng(p.seed),
