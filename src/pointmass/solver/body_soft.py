@@ -237,7 +237,7 @@ def normals(ca, cb, n, r0a, r0b, depth0, quat, round_a, round_b, owner, ln, reac
     within a step were pushed off their centres: two frictionless spheres in a glancing
     collision came away spinning (0.015 rad/s each at 1 m/s), a frictionless sphere sliding
     off another spun at 0.16 rad/s, and a frictionless pit of 1 000 sphere bodies spun up to
-    2 rad/s (it still does, 1.6 rad/s: its pour's fast impacts, below, spin it).
+    3.0 rad/s (it still does, 1.6 rad/s: its pour's fast impacts, below, spin it).
 
     Not a sweep's row at a fast glancing pair's time of impact, whose normal is the centres'
     line then, not at the step's start: its push stays at one point, exact in both momenta,

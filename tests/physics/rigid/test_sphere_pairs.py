@@ -9,7 +9,8 @@ between the two collision points carried along by the centres: two spheres slidi
 each other within a step were pushed off their centres. Measured then: two frictionless
 spheres meeting at 1 m/s in a glancing collision came away spinning at 0.015 rad/s each
 (0.05 rad/s at 2 m/s), a frictionless sphere sliding off another on the ground spun at 0.16
-rad/s, and a frictionless pit of 1 000 sphere bodies spun up to 2 rad/s.
+rad/s, and a frictionless pit of 1 000 sphere bodies spun up to 3.0 rad/s (1.6 now: the pour's
+fast impacts, below).
 
 Not a row a sweep found at a fast glancing pair's time of impact (its normal is the centres'
 line then): that push still acts at one point, and a 10 m/s glancing collision still spins
