@@ -134,6 +134,11 @@ class Packed:
         self.velocity = np.concatenate([b.velocity, particles.velocity[selected]])
         self.angular_velocity = np.concatenate([b.angular_velocity, np.zeros((k, 3))])
         self.awake = np.concatenate([b.awake, np.ones(k, bool)])  # joints skip sleeping rows
+        # a particle is a sphere of its radius (the soft step's round rows: its point lies
+        # along the normal as it now lies, and on a sphere body along the two centres)
+        self.shape = np.concatenate([b.shape, np.full(k, SPHERE, b.shape.dtype)])
+        self.size = np.concatenate([b.size, np.repeat(particles.radius[selected, None], 3,
+                                                      axis=1)])
         #: Sleeping bodies that particles rest on, immovable in this view (``freeze``).
         self.frozen: np.ndarray | None = None
 

@@ -898,8 +898,9 @@ def contact_step(nb, substeps, h, gravity, soft, static, threshold, pos, quat, v
     the same order, as ``step``'s loop with joints: the results are bit for bit those of that
     loop.
 
-    ``shape`` (``nb``,) the bodies' shapes: which points' anchors do not turn (``_round``);
-    ``size`` (``nb``, 3) their sizes (a sphere's radius: two spheres' gap, ``normals``).
+    ``shape`` (N,) the view's shapes (a packed view's particles: spheres): which points'
+    anchors do not turn (``_round``); ``size`` (N, 3) their sizes (a sphere's radius: two
+    spheres' gap, ``normals``).
     ``solve_passes``, ``relax_passes``, ``tolerance``, ``relaxation``: the settings'
     ``soft_solve_passes``, ``soft_relax_passes``, ``soft_tolerance``, ``soft_relaxation``.
 
@@ -921,9 +922,9 @@ def contact_step(nb, substeps, h, gravity, soft, static, threshold, pos, quat, v
     m = ca.shape[0]
     round_a_own, round_a = scratch(m, np.bool_)
     round_b_own, round_b = scratch(m, np.bool_)
-    for c in range(m):  # ``_round``: particle rows (index >= nb) do not spin anyway
-        round_a[c] = ca[c] < nb and shape[ca[c]] == SPHERE
-        round_b[c] = cb[c] >= 0 and cb[c] < nb and shape[cb[c]] == SPHERE
+    for c in range(m):  # ``_round``: spheres, and particle rows (index >= nb, spheres)
+        round_a[c] = shape[ca[c]] == SPHERE
+        round_b[c] = cb[c] >= 0 and shape[cb[c]] == SPHERE
     owner_own, owner = zeroed(m, np.int8)
     ln_own, ln = scratch((m, 3), np.float64)
     reach_own, reach = scratch((m, 2), np.float64)
@@ -1090,11 +1091,11 @@ def contact_step(nb, substeps, h, gravity, soft, static, threshold, pos, quat, v
     return passes, deepest, 0, -1
 
 
-def _round(v, b, c: BodyContacts) -> tuple[np.ndarray, np.ndarray]:
+def _round(v, c: BodyContacts) -> tuple[np.ndarray, np.ndarray]:
     """Per point: whether its body A, B is a sphere (``refresh``: a sphere's anchor does not
-    turn with it); particle rows (index ≥ the bodies') do not spin anyway."""
-    spheres = np.zeros(v.position.shape[0], np.bool_)
-    spheres[:b.count] = b.shape[:b.count] == SPHERE
+    turn with it; ``normals``: two spheres touch along their centres). A particle row of a
+    packed view (``rigid/particle_body.py``) is a sphere of the particle's radius."""
+    spheres = v.shape == SPHERE
     return spheres[c.a], (c.b >= 0) & spheres[np.maximum(c.b, 0)]
 
 
@@ -1112,7 +1113,7 @@ def _contact_step(v, b, c: BodyContacts, acceleration, history: ImpulseHistory, 
         v.orientation, v.velocity, v.angular_velocity, v.inv_mass, v.inv_inertia,
         v.inv_inertia_world, v.awake, b.linear_damping, b.angular_damping, acceleration, c.a,
         c.b, c.normal, c.r_a, c.r_b, c.depth, c.friction, c.restitution, impulse, kept,
-        b.shape, b.size, c.impulse, b.force, b.torque, st.soft_solve_passes,
+        v.shape, v.size, c.impulse, b.force, b.torque, st.soft_solve_passes,
         st.soft_relax_passes, st.soft_tolerance, st.soft_relaxation, b.half_velocity,
         b.half_spin)
     if error == 1:
@@ -1177,12 +1178,12 @@ def step(view, bodies, contacts: BodyContacts, acceleration: np.ndarray,
     r = _Rows(c)
     awake = v.awake
     if c.count:
-        r.round_a[:], r.round_b[:] = _round(v, b, c)
+        r.round_a[:], r.round_b[:] = _round(v, c)
         anchor(c.a, c.b, c.normal, c.r_a, c.r_b, v.orientation, v.inv_mass,
                v.inv_inertia_world, v.velocity, v.angular_velocity, acceleration, r.la, r.lb,
                r.along, r.approach, r.relv)
         normals(c.a, c.b, c.normal, c.r_a, c.r_b, c.depth, v.orientation, r.round_a,
-                r.round_b, r.owner, r.ln, r.reach, b.size)
+                r.round_b, r.owner, r.ln, r.reach, v.size)
         kept = np.empty((c.count, 3))
         history.recall(c.key, r.impulse, kept)
         resting = r.impulse > 0.0  # pushing last step: not an impact
