@@ -43,7 +43,10 @@ WATCHDOG = 120.0
 #: turning with the box (``body_soft.normals``, stop 40): seeds 1000–1999 at 120 steps, 4 of
 #: 1 000 (5 before ``normals``); seeds 0–999 at 300 steps, 8 (13 before). With the turn's
 #: sagitta no longer capped in a joint's aim (``joint_predict``, stop 41): 5 of 1 000 (1076,
-#: 1341, 1465, 1650, 1941: at most 2 in a part, the bound), 7 in seeds 0–999. With the earlier
+#: 1341, 1465, 1650, 1941: at most 2 in a part, the bound), 7 in seeds 0–999. At stop 46,
+#: with particles round in the soft step and two boxes' face normals turning with their
+#: reference face: 5 (1076, 1138, 1341, 1465, 1941); seeds 0–999 and 2000–2999 at 300 steps,
+#: 7 and 8 (10 and 10 before, in the same session). With the earlier
 #: "impulses" stage it was 2 % of the joint-free and 15 % of the jointed scenes (bounds 0.07
 #: and 0.25 then).
 DEEP = 0.01

@@ -78,10 +78,18 @@ def _inv_inertia_along(inv_i, i, nx, ny, nz):
 
 @njit(cache=True, nogil=True)
 def prepare_friction(start, ca, cb, n, ra, rb, mu, inv_mass, inv_i, t1, t2, fa, fb, mass_t1,
-                     mass_t2, mass_tw, radius, fmu):
+                     mass_t2, mass_tw, radius, fmu, turns, carry):
     """Per manifold k: tangents t1, t2 (K, 3); the arms fa, fb (K, 3) from each centre of mass
     to the friction centre; the effective masses of the two tangents and of the twist; the
-    twist radius ρ [m]; μ."""
+    twist radius ρ [m]; μ.
+
+    ``turns`` (M,): each point's normal mode (``body_soft.FIXED`` = 0: fixed in the world).
+    ``carry``: the tangents hold this step's last ones, and a manifold whose normal turns
+    within the step (``body_soft.normals``) carries them along: the last t1 made normal to n
+    again, t2 = n × t1. Its friction impulse is summed through the substeps in its tangents
+    (``jt1``, ``jt2``); found again by ``_basis``, which jumps where |nx| crosses 1/√3, the
+    sum turned in the substep its normal crossed there, by as much as the two bases differ
+    (115° for a normal that turns by 0.05° across it)."""
     for k in range(t1.shape[0]):
         s0 = start[k]
         s1 = start[k + 1]
@@ -89,6 +97,13 @@ def prepare_friction(start, ca, cb, n, ra, rb, mu, inv_mass, inv_i, t1, t2, fa, 
         b = cb[s0]
         nx, ny, nz = n[s0, 0], n[s0, 1], n[s0, 2]
         ax, ay, az, bx, by, bz = _basis(nx, ny, nz)
+        if carry and turns[s0] != 0:
+            d = t1[k, 0] * nx + t1[k, 1] * ny + t1[k, 2] * nz
+            cx, cy, cz = t1[k, 0] - d * nx, t1[k, 1] - d * ny, t1[k, 2] - d * nz
+            length = math.sqrt(cx * cx + cy * cy + cz * cz)
+            if length > 0.5:  # (a normal that turned by less than 60° since the last)
+                ax, ay, az = cx / length, cy / length, cz / length
+                bx, by, bz = ny * az - nz * ay, nz * ax - nx * az, nx * ay - ny * ax
         t1[k, 0], t1[k, 1], t1[k, 2] = ax, ay, az
         t2[k, 0], t2[k, 1], t2[k, 2] = bx, by, bz
         inv_k = 1.0 / (s1 - s0)

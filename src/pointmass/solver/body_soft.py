@@ -108,7 +108,9 @@ import numpy as np
 from numba import njit
 
 from ..impulse_history import ImpulseHistory
+from ..keys import FEATURE_LIMIT
 from ..rigid.bodies import _kinetic_energy
+from ..rigid.box_box import EDGE_FLAG
 from ..rigid.collide import SPECULATIVE_MARGIN
 from ..rigid.contacts import BodyContacts
 from ..rigid.scalar import qrot, qrot_inv
@@ -134,9 +136,10 @@ _DEFAULTS = SolverSettings()  # the entry points' settings when none are given
 FRICTION_IN_SOLVE = False
 
 #: How a point's normal moves within the step (``normals``, ``refresh``): it stays as the
-#: collision found it, turns with body A or B (a sphere on that body's face), or lies along
-#: the two centres (two spheres).
-FIXED, WITH_A, WITH_B, CENTRES = 0, 1, 2, 3
+#: collision found it, turns with body A or B (a sphere on that body's face), lies along
+#: the two centres (two spheres), or turns with body A or B as the reference face of two
+#: boxes touching face to face.
+FIXED, WITH_A, WITH_B, CENTRES, FACE_A, FACE_B = 0, 1, 2, 3, 4, 5
 
 
 def softness(hertz: float, zeta: float, h: float) -> tuple[float, float, float]:
@@ -212,11 +215,14 @@ def anchor(ca, cb, n, ra, rb, quat, inv_mass, inv_i, vel, ang, acc, la, lb, alon
 
 
 @njit(cache=True, nogil=True)
-def normals(ca, cb, n, r0a, r0b, depth0, quat, round_a, round_b, owner, ln, reach, size):
+def normals(start, ca, cb, n, r0a, r0b, depth0, quat, round_a, round_b, owner, ln, reach, size,
+            key):
     """Per point, how its normal follows the bodies through the step's substeps (``owner``:
-    ``FIXED``, ``WITH_A``, ``WITH_B``, ``CENTRES``), that normal in the frame of the body it
-    turns with (``ln``), and each sphere's reach along it (``reach``: r0·n of A, B; of two
-    spheres along their centres, −r_A and r_B). ``size`` (N, 3): the bodies' sizes.
+    ``FIXED``, ``WITH_A``, ``WITH_B``, ``CENTRES``, ``FACE_A``, ``FACE_B``), that normal in the
+    frame of the body it turns with (``ln``), and each sphere's reach along it (``reach``: r0·n
+    of A, B; of two spheres along their centres, −r_A and r_B). ``start``: the manifolds' first
+    rows (``body_manifolds.find_manifolds``); ``size`` (N, 3): the bodies' sizes; ``key`` (M,):
+    the points' keys, whose low bits are the collision's feature ids.
 
     A sphere touching a box touches it along a normal fixed in the box. Kept fixed in the
     world through the step (Box2D's manifold normal, found once a step), a face that turns by
@@ -248,10 +254,14 @@ def normals(ca, cb, n, r0a, r0b, depth0, quat, round_a, round_b, owner, ln, reac
     was kept, but the pair came away 3.3 % of its speed off the exact outcome (0.35 % along
     the impact's normal).
 
-    Not (yet) two boxes, where the normal is the reference face's (its box named by the
-    point's feature id, ``box_box``; an edge–edge normal is fixed in neither): tried (with two
-    spheres), the ragdoll lying on its arm no longer ended its resting steps with the motion
-    it made (tests/physics/rigid/test_soft_resting_bounce.py), which is not yet understood."""
+    Two boxes touching face to face (``FACE_A``, ``FACE_B``): the normal is the reference
+    face's, and turns with the box that face belongs to (named by the point's feature id,
+    ``box_box``); both anchors stay fixed in their bodies, so the gap is the incident point's
+    height over that face as it now lies. Kept fixed in the world, a frictionless 5 cm cube
+    sliding at 2–4 m/s over a slab spinning at 3 rad/s rode 1.1 mm above its face or sank
+    3.3 mm into it, and at 4 m/s it tripped on the face's turn and tumbled off; now within
+    0.3 mm (tests/physics/rigid/test_turning_normals.py). An edge–edge point's normal is
+    fixed in neither box and stays fixed in the world."""
     for c in range(ca.shape[0]):
         a = ca[c]
         b = cb[c]
@@ -275,14 +285,33 @@ def normals(ca, cb, n, r0a, r0b, depth0, quat, round_a, round_b, owner, ln, reac
             # a point the collision found touching or within its margin now (not a gap that a
             # sweep carried back from its time of impact), between a sphere and a box
             turn = WITH_B if round_a[c] else WITH_A
+        elif b >= 0 and not round_a[c] and not round_b[c]:  # two boxes
+            feature = key[c] & (FEATURE_LIMIT - 1)
+            if not feature & EDGE_FLAG:  # a face point: its normal is the reference face's
+                turn = FACE_B if feature & 1 else FACE_A  # (its manifold decides, below)
         owner[c] = turn
         if turn == FIXED:
             continue
         nx, ny, nz = n[c, 0], n[c, 1], n[c, 2]
         reach[c, 0] = r0a[c, 0] * nx + r0a[c, 1] * ny + r0a[c, 2] * nz
         reach[c, 1] = r0b[c, 0] * nx + r0b[c, 1] * ny + r0b[c, 2] * nz
-        q = quat[a] if turn == WITH_A else quat[b]
+        q = quat[a] if turn == WITH_A or turn == FACE_A else quat[b]
         ln[c, 0], ln[c, 1], ln[c, 2] = qrot_inv(q[0], q[1], q[2], q[3], nx, ny, nz)
+    # two boxes' face points turn as one manifold (the passes push every point of a manifold
+    # along its first point's normal: with some points turned and others not, a push and its
+    # angular terms lay along different normals, which changed two spinning boxes' angular
+    # momentum by 3e-6), when any point of it was found touching or within the margin now
+    for k in range(start.shape[0] - 1):
+        s0 = start[k]
+        turn = owner[s0]
+        if turn != FACE_A and turn != FACE_B:
+            continue
+        near = False
+        for c in range(s0, start[k + 1]):
+            near = near or depth0[c] > -SPECULATIVE_MARGIN
+        if not near:
+            for c in range(s0, start[k + 1]):
+                owner[c] = FIXED
 
 
 @njit(cache=True, inline="always")
@@ -295,7 +324,7 @@ def _normal_velocity(vel, ang, i, rx, ry, rz, nx, ny, nz):
 @njit(cache=True, nogil=True)
 def refresh(start, ca, cb, n, la, lb, r0a, r0b, depth0, mu, inv_mass, inv_i, pos, quat, ra, rb,
             sep, mass_n, t1, t2, fa, fb, mass_t1, mass_t2, mass_tw, radius, fmu, arm, farm,
-            round_a, round_b, owner, ln, reach):
+            round_a, round_b, owner, ln, reach, carry):
     """The rows at the bodies' current pose (module docstring): each point's normal as it now
     lies (``normals``: a sphere on a box's face turns with the box); its separation from its
     two body-fixed anchors (a sphere's: its reach along that normal); its arms to one point
@@ -316,8 +345,8 @@ def refresh(start, ca, cb, n, la, lb, r0a, r0b, depth0, mu, inv_mass, inv_i, pos
             span = math.sqrt(dx * dx + dy * dy + dz * dz)
             if span > 0.0:  # (concentric: the last normal stays)
                 n[c, 0], n[c, 1], n[c, 2] = dx / span, dy / span, dz / span
-        elif turn == WITH_A or turn == WITH_B:  # the normal as it now lies (``normals``)
-            q = quat[a] if turn == WITH_A else quat[b]
+        elif turn != FIXED:  # the normal as it now lies (``normals``)
+            q = quat[a] if turn == WITH_A or turn == FACE_A else quat[b]
             n[c, 0], n[c, 1], n[c, 2] = qrot(q[0], q[1], q[2], q[3], ln[c, 0], ln[c, 1], ln[c, 2])
         nx, ny, nz = n[c, 0], n[c, 1], n[c, 2]
         # a sphere's nearest point along n is its centre's arm of the collision, whatever
@@ -393,7 +422,7 @@ def refresh(start, ca, cb, n, la, lb, r0a, r0b, depth0, mu, inv_mass, inv_i, pos
             k += inv_mass[b] + bm.arm_mass(inv_i, b, rb[c, 0], rb[c, 1], rb[c, 2], nx, ny, nz)
         mass_n[c] = 1.0 / k if k > 0.0 else 0.0
     bm.prepare_friction(start, ca, cb, n, ra, rb, mu, inv_mass, inv_i, t1, t2, fa, fb, mass_t1,
-                        mass_t2, mass_tw, radius, fmu)
+                        mass_t2, mass_tw, radius, fmu, owner, carry)
     bp.prepare_arms(start, ca, cb, n, ra, rb, fa, fb, t1, t2, inv_i, arm, farm)
     return deepest
 
@@ -866,13 +895,15 @@ class _Rows:
         self.reach = np.empty((m, 2))
 
 
-def _refresh(b, c: BodyContacts, r: _Rows) -> float:
+def _refresh(b, c: BodyContacts, r: _Rows, carry: bool = False) -> float:
+    """``refresh`` (``carry``: a later substep's, whose turning manifolds carry their
+    tangents along)."""
     return float(refresh(r.start, c.a, c.b, c.normal, r.la, r.lb, c.r_a, c.r_b, c.depth,
                          c.friction,
                          b.inv_mass, b.inv_inertia_world, b.position, b.orientation, r.ra, r.rb,
                          r.sep, r.mass_n, r.t1, r.t2, r.fa, r.fb, r.mass_t1, r.mass_t2,
                          r.mass_tw, r.radius, r.fmu, r.arm, r.farm, r.round_a, r.round_b,
-                         r.owner, r.ln, r.reach))
+                         r.owner, r.ln, r.reach, carry))
 
 
 def _pass(b, c: BodyContacts, r: _Rows, inv_h: float, use_bias: bool, soft, static,
@@ -888,8 +919,8 @@ def _pass(b, c: BodyContacts, r: _Rows, inv_h: float, use_bias: bool, soft, stat
 @njit(cache=True, nogil=True)
 def contact_step(nb, substeps, h, gravity, soft, static, threshold, pos, quat, vel, ang,
                  inv_mass, inv_inertia, inv_i, awake, lin_d, ang_d, acc, ca, cb, n, r0a, r0b,
-                 depth0, mu, e, impulse, kept, shape, size, total, force, torque, solve_passes,
-                 relax_passes, tolerance, relaxation, half_v, half_w):
+                 depth0, mu, e, key, impulse, kept, shape, size, total, force, torque,
+                 solve_passes, relax_passes, tolerance, relaxation, half_v, half_w):
     """The whole soft step of a world without joints in one compiled call (issue 26: a small
     world pays no Python per substep; measured, the 10-box tower's stage made 38 kernel calls
     a step from Python). ``impulse`` (M,) and ``kept`` (M, 3) come in with the recalled warm
@@ -916,6 +947,7 @@ def contact_step(nb, substeps, h, gravity, soft, static, threshold, pos, quat, v
     awake, lin_d, ang_d, acc = borrowed(awake), borrowed(lin_d), borrowed(ang_d), borrowed(acc)
     ca, cb, n, r0a, r0b = borrowed(ca), borrowed(cb), borrowed(n), borrowed(r0a), borrowed(r0b)
     depth0, mu, e, impulse = borrowed(depth0), borrowed(mu), borrowed(e), borrowed(impulse)
+    key = borrowed(key)
     kept, shape, size, total = borrowed(kept), borrowed(shape), borrowed(size), borrowed(total)
     force, torque = borrowed(force), borrowed(torque)
     half_v, half_w = borrowed(half_v), borrowed(half_w)
@@ -960,10 +992,11 @@ def contact_step(nb, substeps, h, gravity, soft, static, threshold, pos, quat, v
     if m:
         anchor(ca, cb, n, r0a, r0b, quat, inv_mass, inv_i, vel, ang, acc, la, lb, along,
                approach, relv)
-        normals(ca, cb, n, r0a, r0b, depth0, quat, round_a, round_b, owner, ln, reach, size)
+        normals(start, ca, cb, n, r0a, r0b, depth0, quat, round_a, round_b, owner, ln, reach,
+                size, key)
         refresh(start, ca, cb, n, la, lb, r0a, r0b, depth0, mu, inv_mass, inv_i, pos, quat, ra,
                 rb, sep, mass_n, t1, t2, fa, fb, mass_t1, mass_t2, mass_tw, radius, fmu, arm,
-                farm, round_a, round_b, owner, ln, reach)
+                farm, round_a, round_b, owner, ln, reach, False)
         bm.gather_friction(start, n, t1, t2, fmu, radius, mass_tw, kept, jt1, jt2, jtw)
     # restitution returns at most what the contacts absorbed (``soft_energy``), counted only
     # where a point can bounce
@@ -1024,7 +1057,7 @@ def contact_step(nb, substeps, h, gravity, soft, static, threshold, pos, quat, v
             deepest = refresh(start, ca, cb, n, la, lb, r0a, r0b, depth0, mu, inv_mass, inv_i,
                               pos, quat, ra, rb, sep, mass_n, t1, t2, fa, fb, mass_t1, mass_t2,
                               mass_tw, radius, fmu, arm, farm, round_a, round_b, owner,
-                              ln, reach)
+                              ln, reach, True)
             closing(ca, cb, n, sep, peak, arm, vel, ang, relv, gap, False)
             passes += soft_passes(start, ca, cb, n, t1, t2, fmu, radius, mass_n, mass_t1,
                                   mass_t2, mass_tw, sep, inv_mass, vel, ang, impulse, peak,
@@ -1112,7 +1145,7 @@ def _contact_step(v, b, c: BodyContacts, acceleration, history: ImpulseHistory, 
         b.count, st.soft_substeps, h, gravity, soft, static, threshold, v.position,
         v.orientation, v.velocity, v.angular_velocity, v.inv_mass, v.inv_inertia,
         v.inv_inertia_world, v.awake, b.linear_damping, b.angular_damping, acceleration, c.a,
-        c.b, c.normal, c.r_a, c.r_b, c.depth, c.friction, c.restitution, impulse, kept,
+        c.b, c.normal, c.r_a, c.r_b, c.depth, c.friction, c.restitution, c.key, impulse, kept,
         v.shape, v.size, c.impulse, b.force, b.torque, st.soft_solve_passes,
         st.soft_relax_passes, st.soft_tolerance, st.soft_relaxation, b.half_velocity,
         b.half_spin)
@@ -1182,8 +1215,8 @@ def step(view, bodies, contacts: BodyContacts, acceleration: np.ndarray,
         anchor(c.a, c.b, c.normal, c.r_a, c.r_b, v.orientation, v.inv_mass,
                v.inv_inertia_world, v.velocity, v.angular_velocity, acceleration, r.la, r.lb,
                r.along, r.approach, r.relv)
-        normals(c.a, c.b, c.normal, c.r_a, c.r_b, c.depth, v.orientation, r.round_a,
-                r.round_b, r.owner, r.ln, r.reach, v.size)
+        normals(r.start, c.a, c.b, c.normal, c.r_a, c.r_b, c.depth, v.orientation, r.round_a,
+                r.round_b, r.owner, r.ln, r.reach, v.size, c.key)
         kept = np.empty((c.count, 3))
         history.recall(c.key, r.impulse, kept)
         resting = r.impulse > 0.0  # pushing last step: not an impact
@@ -1269,7 +1302,7 @@ def step(view, bodies, contacts: BodyContacts, acceleration: np.ndarray,
             jr = joint_soft.prepare(v, joints, h, st)
             joint_soft.recall(joints, jr)
         if c.count:
-            out.deepest = _refresh(v, c, r)
+            out.deepest = _refresh(v, c, r, True)
             closing(c.a, c.b, c.normal, r.sep, r.peak, r.arm, v.velocity, v.angular_velocity,
                     r.relv, r.gap, False)
             passes += _pass(v, c, r, inv_h, False, soft, static, st, st.soft_relax_passes)
