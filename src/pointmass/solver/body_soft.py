@@ -258,9 +258,9 @@ def normals(start, ca, cb, n, r0a, r0b, depth0, quat, round_a, round_b, owner, l
     face's, and turns with the box that face belongs to (named by the point's feature id,
     ``box_box``); both anchors stay fixed in their bodies, so the gap is the incident point's
     height over that face as it now lies. Kept fixed in the world, a frictionless 5 cm cube
-    sliding at 2–4 m/s over a slab spinning at 3 rad/s rode 1.1 mm above its face or sank
+    sliding at 2–4 m/s over a slab spinning at 3 rad/s rode 1.2 mm above its face or sank
     3.3 mm into it, and at 4 m/s it tripped on the face's turn and tumbled off; now within
-    0.3 mm (tests/physics/rigid/test_turning_normals.py). An edge–edge point's normal is
+    0.8 mm (tests/physics/rigid/test_turning_normals.py). An edge–edge point's normal is
     fixed in neither box and stays fixed in the world."""
     for c in range(ca.shape[0]):
         a = ca[c]
