@@ -215,6 +215,17 @@ def anchor(ca, cb, n, ra, rb, quat, inv_mass, inv_i, vel, ang, acc, la, lb, alon
 
 
 @njit(cache=True, nogil=True)
+def round_rows(shape, ca, cb, round_a, round_b):
+    """Per point: whether its body A, B is a sphere (``refresh``: a sphere's anchor does not
+    turn with it; ``normals``: two spheres touch along their centres), from the view's
+    ``shape``: a particle row of a packed view (``rigid/particle_body.py``) is a sphere of the
+    particle's radius."""
+    for c in range(ca.shape[0]):
+        round_a[c] = shape[ca[c]] == SPHERE
+        round_b[c] = cb[c] >= 0 and shape[cb[c]] == SPHERE
+
+
+@njit(cache=True, nogil=True)
 def normals(start, ca, cb, n, r0a, r0b, depth0, quat, round_a, round_b, owner, ln, reach, size,
             key):
     """Per point, how its normal follows the bodies through the step's substeps (``owner``:
@@ -930,7 +941,7 @@ def contact_step(nb, substeps, h, gravity, soft, static, threshold, pos, quat, v
     loop.
 
     ``shape`` (N,) the view's shapes (a packed view's particles: spheres): which points'
-    anchors do not turn (``_round``); ``size`` (N, 3) their sizes (a sphere's radius: two
+    anchors do not turn (``round_rows``); ``size`` (N, 3) their sizes (a sphere's radius: two
     spheres' gap, ``normals``).
     ``solve_passes``, ``relax_passes``, ``tolerance``, ``relaxation``: the settings'
     ``soft_solve_passes``, ``soft_relax_passes``, ``soft_tolerance``, ``soft_relaxation``.
@@ -954,9 +965,7 @@ def contact_step(nb, substeps, h, gravity, soft, static, threshold, pos, quat, v
     m = ca.shape[0]
     round_a_own, round_a = scratch(m, np.bool_)
     round_b_own, round_b = scratch(m, np.bool_)
-    for c in range(m):  # ``_round``: spheres, and particle rows (index >= nb, spheres)
-        round_a[c] = shape[ca[c]] == SPHERE
-        round_b[c] = cb[c] >= 0 and shape[cb[c]] == SPHERE
+    round_rows(shape, ca, cb, round_a, round_b)
     owner_own, owner = zeroed(m, np.int8)
     ln_own, ln = scratch((m, 3), np.float64)
     reach_own, reach = scratch((m, 2), np.float64)
@@ -1124,13 +1133,6 @@ def contact_step(nb, substeps, h, gravity, soft, static, threshold, pos, quat, v
     return passes, deepest, 0, -1
 
 
-def _round(v, c: BodyContacts) -> tuple[np.ndarray, np.ndarray]:
-    """Per point: whether its body A, B is a sphere (``refresh``: a sphere's anchor does not
-    turn with it; ``normals``: two spheres touch along their centres). A particle row of a
-    packed view (``rigid/particle_body.py``) is a sphere of the particle's radius."""
-    spheres = v.shape == SPHERE
-    return spheres[c.a], (c.b >= 0) & spheres[np.maximum(c.b, 0)]
-
 
 def _contact_step(v, b, c: BodyContacts, acceleration, history: ImpulseHistory, h: float,
                   threshold: float, gravity, st: SolverSettings, soft, static, out: SoftRows):
@@ -1211,7 +1213,7 @@ def step(view, bodies, contacts: BodyContacts, acceleration: np.ndarray,
     r = _Rows(c)
     awake = v.awake
     if c.count:
-        r.round_a[:], r.round_b[:] = _round(v, c)
+        round_rows(v.shape, c.a, c.b, r.round_a, r.round_b)
         anchor(c.a, c.b, c.normal, c.r_a, c.r_b, v.orientation, v.inv_mass,
                v.inv_inertia_world, v.velocity, v.angular_velocity, acceleration, r.la, r.lb,
                r.along, r.approach, r.relv)
